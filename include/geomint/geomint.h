@@ -1,0 +1,15 @@
+/* geomint: geometric numerical integration of mechanics and field theories. Umbrella header. */
+#ifndef GEOMINT_GEOMINT_H
+#define GEOMINT_GEOMINT_H
+
+#include "geomint/core.h"
+#include "geomint/ode.h"
+#include "geomint/methods.h"
+#include "geomint/problems.h"
+
+#define GM_VERSION_MAJOR 0
+#define GM_VERSION_MINOR 1
+#define GM_VERSION_PATCH 0
+#define GM_VERSION_STRING "0.1.0"
+
+#endif

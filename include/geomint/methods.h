@@ -1,0 +1,59 @@
+/* geomint methods: the registry of integration methods. A method is a static const row of a
+ * table (DESIGN §4): its name, family, order, stages, coefficients, flags and reference. */
+#ifndef GEOMINT_METHODS_H
+#define GEOMINT_METHODS_H
+
+#include <stddef.h>
+
+#include "geomint/core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum gm_method_family {
+  GM_FAMILY_EXPLICIT_RK = 1, /* explicit Runge–Kutta (Butcher tableau), first-order problems */
+  GM_FAMILY_SPLITTING,       /* drift–kick compositions for separable H = T(p) + V(q) */
+  GM_FAMILY_IMPLICIT_RK      /* implicit Runge–Kutta solved by Newton */
+} gm_method_family;
+
+/* "explicit-rk", "splitting", "implicit-rk" */
+const char *gm_method_family_name(gm_method_family family);
+
+enum {
+  GM_SYMPLECTIC = 1u << 0,
+  GM_SYMMETRIC = 1u << 1,
+  GM_EXPLICIT = 1u << 2,
+  GM_IMPLICIT = 1u << 3,
+  GM_ENERGY_PRESERVING = 1u << 4,
+  GM_FSAL = 1u << 5 /* last force of a step is the first of the next: evaluated once */
+};
+#define GM_N_METHOD_FLAGS 6
+/* Name of the flag with index bit (0 ≤ bit < GM_N_METHOD_FLAGS): "symplectic", ... */
+const char *gm_method_flag_name(size_t bit);
+
+typedef struct gm_method {
+  const char *name;           /* lowercase-with-hyphens, unique */
+  gm_method_family family;
+  int order;                  /* classical order */
+  size_t n_stages;
+  unsigned flags;             /* GM_SYMPLECTIC | ... */
+  unsigned accepts;           /* bitwise or of gm_problem_kind */
+  /* Runge–Kutta: a is n_stages×n_stages row-major, b and c have n_stages entries.
+   * Splitting: one step is, for i = 0..n_stages-1,
+   *   drift  q += a[i]·h·∇T(p),  then  kick  p -= b[i]·h·∇V(q)
+   * (c unused; zero coefficients are skipped). */
+  const double *a, *b, *c;
+  const char *description;
+  const char *reference;      /* paper and equation the coefficients come from */
+} gm_method;
+
+size_t gm_method_count(void);
+const gm_method *gm_method_at(size_t index);   /* NULL past the end */
+/* Row by exact name; NULL when there is none. */
+const gm_method *gm_method_find(const char *name);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

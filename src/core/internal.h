@@ -1,0 +1,30 @@
+/* Private helpers of the core module; never installed. */
+#ifndef GM_CORE_INTERNAL_H
+#define GM_CORE_INTERNAL_H
+
+#include <stdarg.h>
+#include <stddef.h>
+
+#include "geomint/core.h"
+
+/* Write a formatted message into buf (capacity cap, always NUL-terminated) and return status,
+ * so that error paths read `return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL, "...")`. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+gm_status gm_fail(char *buf, size_t cap, gm_status status, const char *fmt, ...);
+
+/* Same, for the optional gm_error of creators (err may be NULL). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+gm_status gm_error_set(gm_error *err, gm_status status, const char *fmt, ...);
+
+#define GM_PI 3.14159265358979323846
+
+/* Index of the first non-finite entry of x[0..n), or n when all are finite. */
+size_t gm_first_nonfinite(size_t n, const double *x);
+/* max_i |x_i| */
+double gm_norm_inf(size_t n, const double *x);
+
+#endif

@@ -1,0 +1,20 @@
+/* Private declarations of the methods module: the tables and the steppers of each family. */
+#ifndef GM_METHODS_INTERNAL_H
+#define GM_METHODS_INTERNAL_H
+
+#include "ode/internal.h"
+
+/* Method tables, one per family (src/methods/..._table.c). */
+extern const gm_method gm_explicit_rk_methods[];
+extern const size_t gm_n_explicit_rk_methods;
+extern const gm_method gm_splitting_methods[];
+extern const size_t gm_n_splitting_methods;
+extern const gm_method gm_implicit_rk_methods[];
+extern const size_t gm_n_implicit_rk_methods;
+
+/* Steppers, one per family. */
+extern const gm_stepper gm_explicit_rk_stepper;
+extern const gm_stepper gm_splitting_stepper;
+extern const gm_stepper gm_implicit_rk_stepper;
+
+#endif

@@ -1,0 +1,69 @@
+/* The method registry: all tables seen as one list, looked up by name. */
+#include <string.h>
+
+#include "methods/internal.h"
+
+typedef struct {
+  const gm_method *rows;
+  const size_t *count;
+} table_ref;
+
+static const table_ref tables[] = {
+    {gm_explicit_rk_methods, &gm_n_explicit_rk_methods},
+    {gm_splitting_methods, &gm_n_splitting_methods},
+    {gm_implicit_rk_methods, &gm_n_implicit_rk_methods},
+};
+static const size_t n_tables = sizeof tables / sizeof tables[0];
+
+size_t gm_method_count(void) {
+  size_t n = 0;
+  for (size_t t = 0; t < n_tables; ++t) n += *tables[t].count;
+  return n;
+}
+
+const gm_method *gm_method_at(size_t index) {
+  for (size_t t = 0; t < n_tables; ++t) {
+    if (index < *tables[t].count) return &tables[t].rows[index];
+    index -= *tables[t].count;
+  }
+  return NULL;
+}
+
+const gm_method *gm_method_find(const char *name) {
+  if (name == NULL) return NULL;
+  for (size_t i = 0, n = gm_method_count(); i < n; ++i) {
+    const gm_method *m = gm_method_at(i);
+    if (strcmp(m->name, name) == 0) return m;
+  }
+  return NULL;
+}
+
+const char *gm_method_family_name(gm_method_family family) {
+  switch (family) {
+    case GM_FAMILY_EXPLICIT_RK:
+      return "explicit-rk";
+    case GM_FAMILY_SPLITTING:
+      return "splitting";
+    case GM_FAMILY_IMPLICIT_RK:
+      return "implicit-rk";
+  }
+  return "unknown";
+}
+
+const char *gm_method_flag_name(size_t bit) {
+  static const char *const names[GM_N_METHOD_FLAGS] = {
+      "symplectic", "symmetric", "explicit", "implicit", "energy-preserving", "fsal"};
+  return bit < GM_N_METHOD_FLAGS ? names[bit] : NULL;
+}
+
+const gm_stepper *gm_stepper_for(const gm_method *method) {
+  switch (method->family) {
+    case GM_FAMILY_EXPLICIT_RK:
+      return &gm_explicit_rk_stepper;
+    case GM_FAMILY_SPLITTING:
+      return &gm_splitting_stepper;
+    case GM_FAMILY_IMPLICIT_RK:
+      return &gm_implicit_rk_stepper;
+  }
+  return NULL;
+}

@@ -1,0 +1,262 @@
+/* The integrator driver: owns the state and the loop (fixed steps, exact final time),
+ * compensated summation, observers and statistics. Steppers live in src/methods. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ode/internal.h"
+
+static int accepts_kind(unsigned accepts, gm_problem_kind kind) {
+  if (accepts & (unsigned)kind) return 1;
+  /* separable ⊂ Hamiltonian ⊂ first order */
+  if (kind == GM_PROBLEM_SEPARABLE && (accepts & GM_PROBLEM_HAMILTONIAN)) return 1;
+  if (kind != GM_PROBLEM_FIRST_ORDER && (accepts & GM_PROBLEM_FIRST_ORDER)) return 1;
+  return 0;
+}
+
+static void list_kinds(unsigned accepts, char *buf, size_t cap) {
+  buf[0] = '\0';
+  const gm_problem_kind kinds[] = {GM_PROBLEM_FIRST_ORDER, GM_PROBLEM_HAMILTONIAN,
+                                   GM_PROBLEM_SEPARABLE};
+  size_t len = 0;
+  for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i) {
+    if (!(accepts & (unsigned)kinds[i])) continue;
+    int w = snprintf(buf + len, cap - len, "%s%s", len ? ", " : "", gm_problem_kind_name(kinds[i]));
+    if (w < 0 || (size_t)w >= cap - len) break;
+    len += (size_t)w;
+  }
+}
+
+static double *alloc_doubles(size_t n) { return calloc(n ? n : 1, sizeof(double)); }
+
+gm_status gm_integrator_create(const gm_method *method, const gm_problem *problem,
+                               gm_integrator **out, gm_error *err) {
+  if (out == NULL) return gm_error_set(err, GM_EINVAL, "output pointer is NULL");
+  *out = NULL;
+  if (method == NULL) return gm_error_set(err, GM_EINVAL, "method is NULL");
+  gm_status st = gm_problem_validate(problem, err);
+  if (st != GM_OK) return st;
+  if (!accepts_kind(method->accepts, problem->kind)) {
+    char kinds[96];
+    list_kinds(method->accepts, kinds, sizeof kinds);
+    return gm_error_set(err, GM_EUNSUPPORTED,
+                        "method '%s' cannot integrate a %s problem: it accepts %s problems",
+                        method->name, gm_problem_kind_name(problem->kind), kinds);
+  }
+  const gm_stepper *stepper = gm_stepper_for(method);
+  if (stepper == NULL)
+    return gm_error_set(err, GM_EINVAL, "method '%s' has no stepper for its family",
+                        method->name);
+
+  gm_integrator *it = calloc(1, sizeof *it);
+  if (it == NULL) return gm_error_set(err, GM_ENOMEM, "out of memory");
+  it->method = method;
+  it->problem = problem;
+  it->stepper = stepper;
+  it->n = gm_problem_state_size(problem);
+  it->dim = problem->dim;
+  const size_t n = it->n;
+  it->y = alloc_doubles(n);
+  it->y_next = alloc_doubles(n);
+  it->delta = alloc_doubles(n);
+  it->carry = alloc_doubles(n);
+  it->carry_next = alloc_doubles(n);
+  it->fd_y = alloc_doubles(n);
+  it->fd_fp = alloc_doubles(n);
+  it->fd_fm = alloc_doubles(n);
+  it->hess = alloc_doubles(n * n);
+  if (!it->y || !it->y_next || !it->delta || !it->carry || !it->carry_next || !it->fd_y ||
+      !it->fd_fp || !it->fd_fm || !it->hess) {
+    gm_integrator_free(it);
+    return gm_error_set(err, GM_ENOMEM, "out of memory for a state of size %zu", n);
+  }
+  st = stepper->init(it);
+  if (st != GM_OK) {
+    gm_error_set(err, st, "%s", it->errmsg[0] ? it->errmsg : gm_strerror(st));
+    gm_integrator_free(it);
+    return st;
+  }
+  *out = it;
+  return GM_OK;
+}
+
+void gm_integrator_free(gm_integrator *it) {
+  if (it == NULL) return;
+  if (it->stepper != NULL && it->stepper->release != NULL) it->stepper->release(it);
+  free(it->y);
+  free(it->y_next);
+  free(it->delta);
+  free(it->carry);
+  free(it->carry_next);
+  free(it->fd_y);
+  free(it->fd_fp);
+  free(it->fd_fm);
+  free(it->hess);
+  free(it->observers);
+  free(it);
+}
+
+gm_status gm_integrator_set_state(gm_integrator *it, double t, const double *y) {
+  if (it == NULL || y == NULL) return GM_EINVAL;
+  if (!isfinite(t))
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN, "initial time is not finite");
+  size_t bad = gm_first_nonfinite(it->n, y);
+  if (bad < it->n)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
+                   "initial state component %zu is %g", bad + 1, y[bad]);
+  memcpy(it->y, y, it->n * sizeof *y);
+  memset(it->carry, 0, it->n * sizeof *it->carry);
+  it->t = t;
+  it->step_index = 0;
+  for (size_t k = 0; k < it->n_observers; ++k) it->observers[k].last_step = SIZE_MAX;
+  if (it->stepper->invalidate != NULL) it->stepper->invalidate(it);
+  it->errmsg[0] = '\0';
+  return GM_OK;
+}
+
+gm_status gm_integrator_set_compensated(gm_integrator *it, int on) {
+  if (it == NULL) return GM_EINVAL;
+  it->compensated = on != 0;
+  memset(it->carry, 0, it->n * sizeof *it->carry);
+  if (it->stepper->invalidate != NULL) it->stepper->invalidate(it);
+  return GM_OK;
+}
+
+gm_status gm_integrator_add_observer(gm_integrator *it, gm_observer_fn fn, void *ctx,
+                                     size_t every) {
+  if (it == NULL) return GM_EINVAL;
+  if (fn == NULL)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL, "observer function is NULL");
+  if (every == 0)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL, "observer interval must be >= 1");
+  gm_observer_entry *grown = realloc(it->observers, (it->n_observers + 1) * sizeof *grown);
+  if (grown == NULL) return gm_fail(it->errmsg, sizeof it->errmsg, GM_ENOMEM, "out of memory");
+  it->observers = grown;
+  it->observers[it->n_observers++] = (gm_observer_entry){fn, ctx, every, SIZE_MAX};
+  return GM_OK;
+}
+
+/* Call the observers due at the current step (all of them when `all`), each once per step. */
+static gm_status notify(gm_integrator *it, int all) {
+  for (size_t k = 0; k < it->n_observers; ++k) {
+    gm_observer_entry *o = &it->observers[k];
+    if (o->last_step == it->step_index) continue;
+    if (!all && it->step_index % o->every != 0) continue;
+    o->last_step = it->step_index;
+    int rc = o->fn(o->ctx, it->step_index, it->t, it->y);
+    if (rc != 0)
+      return gm_fail(it->errmsg, sizeof it->errmsg, GM_ECALLBACK,
+                     "observer %zu returned %d at t = %.17g", k + 1, rc, it->t);
+  }
+  return GM_OK;
+}
+
+/* Advance one step of size h to the time t_new; the state is unchanged on failure. */
+static gm_status advance(gm_integrator *it, double h, double t_new) {
+  const size_t n = it->n;
+  gm_status st;
+  if (!it->compensated) {
+    st = it->stepper->step(it, it->t, h, it->y, it->y_next, NULL);
+    if (st != GM_OK) return st;
+  } else {
+    st = it->stepper->step(it, it->t, h, it->y, NULL, it->delta);
+    if (st != GM_OK) return st;
+    /* Compensated summation, Hairer–Lubich–Wanner GNI (2006) §VIII.5, Algorithm 5.1:
+     * the rounding error of y + Δy is carried into the next step. */
+    for (size_t i = 0; i < n; ++i) {
+      double e = it->carry[i] + it->delta[i];
+      double b = it->y[i] + e;
+      it->carry_next[i] = (it->y[i] - b) + e;
+      it->y_next[i] = b;
+    }
+  }
+  size_t bad = gm_first_nonfinite(n, it->y_next);
+  if (bad < n) {
+    if (it->stepper->invalidate != NULL) it->stepper->invalidate(it);
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
+                   "state component %zu became %g in the step from t = %.17g to t = %.17g",
+                   bad + 1, it->y_next[bad], it->t, t_new);
+  }
+  double *tmp = it->y;
+  it->y = it->y_next;
+  it->y_next = tmp;
+  if (it->compensated) {
+    tmp = it->carry;
+    it->carry = it->carry_next;
+    it->carry_next = tmp;
+  }
+  it->t = t_new;
+  it->step_index++;
+  it->stats.steps++;
+  return GM_OK;
+}
+
+static gm_status check_step(gm_integrator *it, double h) {
+  if (!isfinite(h) || h == 0.0)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                   "step size must be finite and non-zero, got %g", h);
+  return GM_OK;
+}
+
+gm_status gm_integrator_step(gm_integrator *it, double h) {
+  if (it == NULL) return GM_EINVAL;
+  gm_status st = check_step(it, h);
+  if (st == GM_OK) st = notify(it, it->step_index == 0);
+  if (st == GM_OK) st = advance(it, h, it->t + h);
+  if (st == GM_OK) st = notify(it, 0);
+  return st;
+}
+
+/* n steps of size h from the current time t0; times are t0 + k·h (no accumulated drift),
+ * and the last is t_last exactly. */
+static gm_status run_steps(gm_integrator *it, size_t n_steps, double h, double t_last) {
+  gm_status st = notify(it, it->step_index == 0);
+  const double t0 = it->t;
+  for (size_t k = 1; k <= n_steps && st == GM_OK; ++k) {
+    double t_new = k == n_steps ? t_last : t0 + (double)k * h;
+    st = advance(it, h, t_new);
+    if (st == GM_OK) st = notify(it, 0);
+  }
+  if (st == GM_OK) st = notify(it, 1);
+  return st;
+}
+
+gm_status gm_integrator_run(gm_integrator *it, size_t n_steps, double h) {
+  if (it == NULL) return GM_EINVAL;
+  gm_status st = check_step(it, h);
+  if (st != GM_OK) return st;
+  return run_steps(it, n_steps, h, it->t + (double)n_steps * h);
+}
+
+gm_status gm_integrator_integrate(gm_integrator *it, double t_end, double h) {
+  if (it == NULL) return GM_EINVAL;
+  if (!isfinite(h) || h <= 0.0)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                   "step size must be positive and finite, got %g", h);
+  if (!isfinite(t_end) || t_end <= it->t)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                   "final time %g must be finite and after the current time %g", t_end, it->t);
+  double ratio = (t_end - it->t) / h;
+  /* A ratio a few ulps above an integer is that integer: no sliver step at the end. */
+  double n_real = ceil(ratio - 1e-9 * fmax(1.0, ratio));
+  if (n_real < 1.0) n_real = 1.0;
+  if (n_real > 1e15)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                   "%.3g steps requested: step size too small for this interval", n_real);
+  size_t n_steps = (size_t)n_real;
+  return run_steps(it, n_steps, (t_end - it->t) / (double)n_steps, t_end);
+}
+
+double gm_integrator_time(const gm_integrator *it) { return it ? it->t : NAN; }
+const double *gm_integrator_state(const gm_integrator *it) { return it ? it->y : NULL; }
+size_t gm_integrator_state_size(const gm_integrator *it) { return it ? it->n : 0; }
+gm_stats gm_integrator_stats(const gm_integrator *it) {
+  gm_stats none = {0};
+  return it ? it->stats : none;
+}
+void gm_integrator_reset_stats(gm_integrator *it) {
+  if (it != NULL) memset(&it->stats, 0, sizeof it->stats);
+}
+const char *gm_integrator_errmsg(const gm_integrator *it) { return it ? it->errmsg : ""; }

@@ -1,0 +1,75 @@
+/* Energy and invariant monitor, used as an observer: records the largest drift from the
+ * initial values. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "ode/internal.h"
+
+struct gm_monitor {
+  const gm_problem *problem;
+  double energy0, max_rel_energy, last_rel_energy;
+  double *invariant0, *max_drift;
+  size_t n_observed;
+};
+
+gm_status gm_monitor_create(const gm_problem *problem, const double *y0, gm_monitor **out) {
+  if (out == NULL) return GM_EINVAL;
+  *out = NULL;
+  if (problem == NULL || y0 == NULL) return GM_EINVAL;
+  gm_monitor *mon = calloc(1, sizeof *mon);
+  if (mon == NULL) return GM_ENOMEM;
+  const size_t k = problem->n_invariants;
+  mon->invariant0 = calloc(k ? k : 1, sizeof(double));
+  mon->max_drift = calloc(k ? k : 1, sizeof(double));
+  if (!mon->invariant0 || !mon->max_drift) {
+    gm_monitor_free(mon);
+    return GM_ENOMEM;
+  }
+  mon->problem = problem;
+  mon->energy0 = gm_problem_energy(problem, y0);
+  mon->max_rel_energy = gm_problem_has_energy(problem) ? 0.0 : NAN;
+  mon->last_rel_energy = mon->max_rel_energy;
+  for (size_t i = 0; i < k; ++i)
+    mon->invariant0[i] = problem->invariants[i].value(problem->ctx, y0);
+  *out = mon;
+  return GM_OK;
+}
+
+void gm_monitor_free(gm_monitor *mon) {
+  if (mon == NULL) return;
+  free(mon->invariant0);
+  free(mon->max_drift);
+  free(mon);
+}
+
+int gm_monitor_observe(void *ctx, size_t step, double t, const double *y) {
+  (void)step;
+  (void)t;
+  gm_monitor *mon = ctx;
+  const gm_problem *pb = mon->problem;
+  if (gm_problem_has_energy(pb)) {
+    double dh = fabs(gm_problem_energy(pb, y) - mon->energy0);
+    double rel = mon->energy0 != 0.0 ? dh / fabs(mon->energy0) : dh;
+    mon->last_rel_energy = rel;
+    if (!(rel <= mon->max_rel_energy)) mon->max_rel_energy = rel; /* NaN propagates */
+  }
+  for (size_t i = 0; i < pb->n_invariants; ++i) {
+    double drift = fabs(pb->invariants[i].value(pb->ctx, y) - mon->invariant0[i]);
+    if (!(drift <= mon->max_drift[i])) mon->max_drift[i] = drift;
+  }
+  mon->n_observed++;
+  return 0;
+}
+
+double gm_monitor_initial_energy(const gm_monitor *mon) { return mon ? mon->energy0 : NAN; }
+double gm_monitor_max_rel_energy_error(const gm_monitor *mon) {
+  return mon ? mon->max_rel_energy : NAN;
+}
+double gm_monitor_last_rel_energy_error(const gm_monitor *mon) {
+  return mon ? mon->last_rel_energy : NAN;
+}
+double gm_monitor_max_invariant_drift(const gm_monitor *mon, size_t k) {
+  if (mon == NULL || k >= mon->problem->n_invariants) return NAN;
+  return mon->max_drift[k];
+}
+size_t gm_monitor_n_observed(const gm_monitor *mon) { return mon ? mon->n_observed : 0; }

@@ -1,0 +1,85 @@
+/* Problem descriptions: kinds, state size, validation and energy. */
+#include <math.h>
+
+#include "ode/internal.h"
+
+const char *gm_problem_kind_name(gm_problem_kind kind) {
+  switch (kind) {
+    case GM_PROBLEM_FIRST_ORDER:
+      return "first-order";
+    case GM_PROBLEM_HAMILTONIAN:
+      return "hamiltonian";
+    case GM_PROBLEM_SEPARABLE:
+      return "separable";
+  }
+  return "unknown";
+}
+
+static int is_hamiltonian_kind(gm_problem_kind kind) {
+  return kind == GM_PROBLEM_HAMILTONIAN || kind == GM_PROBLEM_SEPARABLE;
+}
+
+size_t gm_problem_state_size(const gm_problem *problem) {
+  if (problem == NULL) return 0;
+  return is_hamiltonian_kind(problem->kind) ? 2 * problem->dim : problem->dim;
+}
+
+#define REQUIRE(field)                                                                      \
+  do {                                                                                      \
+    if (problem->field == NULL)                                                             \
+      return gm_error_set(err, GM_EINVAL, "%s problem: callback '%s' is missing",           \
+                          gm_problem_kind_name(problem->kind), #field);                     \
+  } while (0)
+
+gm_status gm_problem_validate(const gm_problem *problem, gm_error *err) {
+  if (problem == NULL) return gm_error_set(err, GM_EINVAL, "problem is NULL");
+  if (problem->dim == 0) return gm_error_set(err, GM_EINVAL, "problem dimension is 0");
+  switch (problem->kind) {
+    case GM_PROBLEM_FIRST_ORDER:
+      REQUIRE(rhs);
+      break;
+    case GM_PROBLEM_HAMILTONIAN:
+      REQUIRE(hamiltonian);
+      REQUIRE(dh_dq);
+      REQUIRE(dh_dp);
+      break;
+    case GM_PROBLEM_SEPARABLE:
+      REQUIRE(kinetic);
+      REQUIRE(potential);
+      REQUIRE(kinetic_gradient);
+      REQUIRE(potential_gradient);
+      break;
+    default:
+      return gm_error_set(err, GM_EINVAL, "unknown problem kind %d", (int)problem->kind);
+  }
+  for (size_t k = 0; k < problem->n_invariants; ++k) {
+    if (problem->invariants == NULL || problem->invariants[k].value == NULL ||
+        problem->invariants[k].name == NULL)
+      return gm_error_set(err, GM_EINVAL, "invariant %zu has no name or no function", k);
+  }
+  return GM_OK;
+}
+
+int gm_problem_has_energy(const gm_problem *problem) {
+  return problem != NULL && is_hamiltonian_kind(problem->kind);
+}
+
+double gm_problem_energy(const gm_problem *problem, const double *y) {
+  if (!gm_problem_has_energy(problem)) return NAN;
+  const double *q = y, *p = y + problem->dim;
+  if (problem->kind == GM_PROBLEM_SEPARABLE)
+    return problem->kinetic(problem->ctx, p) + problem->potential(problem->ctx, q);
+  return problem->hamiltonian(problem->ctx, q, p);
+}
+
+int gm_problem_has_jacobian(const gm_problem *problem) {
+  switch (problem->kind) {
+    case GM_PROBLEM_FIRST_ORDER:
+      return problem->rhs_jacobian != NULL;
+    case GM_PROBLEM_HAMILTONIAN:
+      return problem->hamiltonian_hessian != NULL;
+    case GM_PROBLEM_SEPARABLE:
+      return problem->kinetic_hessian != NULL && problem->potential_hessian != NULL;
+  }
+  return 0;
+}
