@@ -1,0 +1,80 @@
+/* Dense linear algebra on row-major matrices, through LAPACKE.
+ *
+ * LU: a row-major n×n array is, read column-major, the transpose Aᵀ. We factor Aᵀ = P L U in
+ * LAPACK's native column-major layout and solve A x = (Aᵀ)ᵀ x = b with trans = 'T'. This is the
+ * same partial-pivoting LU (on the columns of A instead of its rows), but it avoids the transposed
+ * copy that LAPACKE's LAPACK_ROW_MAJOR wrappers allocate on every call: the Newton solver calls
+ * these functions inside integration steps, where nothing may be allocated (DESIGN §3). */
+#include <lapacke.h>
+#include <limits.h>
+#include <stdlib.h>
+
+#include "core/internal.h"
+
+/* The public API passes pivots as int*, handed straight to LAPACK. */
+_Static_assert(sizeof(lapack_int) == sizeof(int), "geomint needs a LAPACK with 32-bit integers");
+
+static int size_ok(size_t n) { return n > 0 && n <= (size_t)INT_MAX; }
+
+static int all_finite(size_t count, const double *x) {
+  return gm_first_nonfinite(count, x) == count;
+}
+
+/* The upper triangle (i <= j) of a row-major n×n matrix is finite. */
+static int upper_finite(size_t n, const double *a) {
+  for (size_t i = 0; i < n; ++i)
+    if (!all_finite(n - i, a + i * n + i)) return 0;
+  return 1;
+}
+
+static gm_status from_lapack_info(lapack_int info) {
+  if (info == 0) return GM_OK;
+  if (info == LAPACK_WORK_MEMORY_ERROR || info == LAPACK_TRANSPOSE_MEMORY_ERROR) return GM_ENOMEM;
+  return GM_ELAPACK;
+}
+
+gm_status gm_lu_factor(size_t n, double *a, int *ipiv) {
+  if (a == NULL || ipiv == NULL || !size_ok(n)) return GM_EINVAL;
+  if (!all_finite(n * n, a)) return GM_EDOMAIN;
+  lapack_int m = (lapack_int)n;
+  /* The _work variant skips LAPACKE's NaN scan: the input is already known to be finite. */
+  lapack_int info = LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, m, m, a, m, ipiv);
+  if (info > 0) return GM_ESINGULAR; /* U(info, info) is exactly zero */
+  return from_lapack_info(info);
+}
+
+/* Solve with factors of Aᵀ (see the top of this file); inputs already checked. */
+static gm_status solve_factored(size_t n, const double *lu, const int *ipiv, double *b) {
+  lapack_int m = (lapack_int)n;
+  return from_lapack_info(LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'T', m, 1, lu, m, ipiv, b, m));
+}
+
+gm_status gm_lu_solve(size_t n, const double *lu, const int *ipiv, double *b) {
+  if (lu == NULL || ipiv == NULL || b == NULL || !size_ok(n)) return GM_EINVAL;
+  if (!all_finite(n * n, lu) || !all_finite(n, b)) return GM_EDOMAIN;
+  return solve_factored(n, lu, ipiv, b);
+}
+
+gm_status gm_dense_solve(size_t n, double *a, double *b) {
+  if (a == NULL || b == NULL || !size_ok(n)) return GM_EINVAL;
+  if (!all_finite(n, b)) return GM_EDOMAIN;
+  /* Pivots of small systems live on the stack, so that common calls do not allocate. */
+  enum { SMALL = 64 };
+  int small[SMALL];
+  int *ipiv = n <= SMALL ? small : malloc(n * sizeof *ipiv);
+  if (ipiv == NULL) return GM_ENOMEM;
+  gm_status s = gm_lu_factor(n, a, ipiv);
+  if (s == GM_OK) s = solve_factored(n, a, ipiv, b);
+  if (ipiv != small) free(ipiv);
+  return s;
+}
+
+gm_status gm_symmetric_eigen(size_t n, double *a, double *eigenvalues) {
+  if (a == NULL || eigenvalues == NULL || !size_ok(n)) return GM_EINVAL;
+  if (!upper_finite(n, a)) return GM_EDOMAIN;
+  /* dsyev (QR iteration) returns eigenvalues in ascending order and orthonormal eigenvectors;
+   * in row-major layout column j of a is the eigenvector of eigenvalues[j]. */
+  lapack_int m = (lapack_int)n;
+  lapack_int info = LAPACKE_dsyev(LAPACK_ROW_MAJOR, 'V', 'U', m, a, m, eigenvalues);
+  return from_lapack_info(info); /* info > 0: the QR iteration did not converge */
+}
