@@ -1,0 +1,67 @@
+/* Symplecticity: the Jacobian J of one step satisfies Jᵀ Ω J = Ω, Ω = [[0, I], [−I, 0]].
+ * J comes from fourth-order central differences (step 1e-4: truncation and round-off both
+ * near 1e-12). The base point is moved off the initial state, where explicit Euler happens to
+ * be area-preserving for the pendulum (cos q = 0). Every row
+ * flagged symplectic is checked on every Hamiltonian library problem it accepts; the
+ * non-symplectic rows must fail the same check, so the check can fail. */
+#include "test_util.h"
+
+static void one_step(const gm_method *m, const gm_problem *pb, const double *y, double h,
+                     double *out) {
+  gm_integrator *it = test_integrator(m, pb, 0.0, y);
+  cr_assert_eq(gm_integrator_step(it, h), GM_OK, "%s", gm_integrator_errmsg(it));
+  memcpy(out, gm_integrator_state(it), gm_integrator_state_size(it) * sizeof *out);
+  gm_integrator_free(it);
+}
+
+/* max |Jᵀ Ω J − Ω| for one step of size h from y */
+static double symplecticity_defect(const gm_method *m, const gm_problem *pb, const double *y0,
+                                   double h) {
+  const size_t n = gm_problem_state_size(pb), d = n / 2;
+  double jac[16][16], y[16], fp1[16], fp2[16], fm1[16], fm2[16];
+  const double delta = 1e-4;
+  for (size_t j = 0; j < n; ++j) {
+    memcpy(y, y0, n * sizeof *y);
+    y[j] = y0[j] + delta;
+    one_step(m, pb, y, h, fp1);
+    y[j] = y0[j] + 2 * delta;
+    one_step(m, pb, y, h, fp2);
+    y[j] = y0[j] - delta;
+    one_step(m, pb, y, h, fm1);
+    y[j] = y0[j] - 2 * delta;
+    one_step(m, pb, y, h, fm2);
+    for (size_t i = 0; i < n; ++i)
+      jac[i][j] = (-fp2[i] + 8 * fp1[i] - 8 * fm1[i] + fm2[i]) / (12 * delta);
+  }
+  double defect = 0.0;
+  for (size_t a = 0; a < n; ++a)
+    for (size_t b = 0; b < n; ++b) {
+      /* (Jᵀ Ω J)_ab = Σ_i J_ia (Ω J)_ib with (Ω J)_ib = J_{i+d,b} (i < d), −J_{i−d,b} (i ≥ d) */
+      double s = 0.0;
+      for (size_t i = 0; i < n; ++i) s += jac[i][a] * (i < d ? jac[i + d][b] : -jac[i - d][b]);
+      double omega = (a < d && b == a + d) ? 1.0 : (a >= d && b + d == a ? -1.0 : 0.0);
+      defect = fmax(defect, fabs(s - omega));
+    }
+  return defect;
+}
+
+static void check_problem(const char *name, double h) {
+  test_model tm = test_model_make(name);
+  for (size_t i = 0; i < gm_method_count(); ++i) {
+    const gm_method *m = gm_method_at(i);
+    if (!test_accepts(m, tm.problem)) continue;
+    double y[16];
+    for (size_t k = 0; k < tm.n; ++k) y[k] = tm.y0[k] + 0.05 * (double)(k + 1);
+    double defect = symplecticity_defect(m, tm.problem, y, h);
+    if (m->flags & GM_SYMPLECTIC)
+      cr_expect_leq(defect, 1e-10, "%s on %s: |JᵀΩJ − Ω| = %.2e", m->name, name, defect);
+    else
+      cr_expect_gt(defect, 1e-8, "%s on %s is not symplectic, yet |JᵀΩJ − Ω| = %.2e", m->name,
+                   name, defect);
+  }
+  gm_model_free(tm.model);
+}
+
+Test(symplectic, kepler) { check_problem("kepler", 0.1); }
+Test(symplectic, henon_heiles) { check_problem("henon-heiles", 0.2); }
+Test(symplectic, pendulum) { check_problem("pendulum", 0.5); }
