@@ -2,8 +2,11 @@
 #ifndef GM_CORE_INTERNAL_H
 #define GM_CORE_INTERNAL_H
 
+#include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdint.h>
+#include <string.h>
 
 #include "geomint/core.h"
 
@@ -22,8 +25,24 @@ gm_status gm_error_set(gm_error *err, gm_status status, const char *fmt, ...);
 
 #define GM_PI 3.14159265358979323846
 
-/* Index of the first non-finite entry of x[0..n), or n when all are finite. */
-size_t gm_first_nonfinite(size_t n, const double *x);
+/* Index of the first non-finite entry of x[0..n), or n when all are finite. The driver checks
+ * every new state, so the common case is one pass of integer operations with one-cycle
+ * latency: a double is NaN or ±inf exactly when its exponent bits are all ones (IEEE 754). */
+static inline size_t gm_first_nonfinite(size_t n, const double *x) {
+  const uint64_t exponent = 0x7ff0000000000000ull;
+  uint64_t largest = 0;
+  for (size_t i = 0; i < n; ++i) {
+    uint64_t bits;
+    memcpy(&bits, &x[i], sizeof bits);
+    bits &= exponent;
+    largest = bits > largest ? bits : largest;
+  }
+  if (largest != exponent) return n;
+  for (size_t i = 0; i < n; ++i)
+    if (!isfinite(x[i])) return i;
+  return n;
+}
+
 /* max_i |x_i| */
 double gm_norm_inf(size_t n, const double *x);
 

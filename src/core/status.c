@@ -38,12 +38,6 @@ gm_status gm_error_set(gm_error *err, gm_status status, const char *fmt, ...) {
   return status;
 }
 
-size_t gm_first_nonfinite(size_t n, const double *x) {
-  for (size_t i = 0; i < n; ++i)
-    if (!isfinite(x[i])) return i;
-  return n;
-}
-
 double gm_norm_inf(size_t n, const double *x) {
   double m = 0.0;
   for (size_t i = 0; i < n; ++i) {

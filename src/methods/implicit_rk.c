@@ -150,4 +150,4 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
   return GM_OK;
 }
 
-const gm_stepper gm_implicit_rk_stepper = {init, step, release, invalidate};
+const gm_stepper gm_implicit_rk_stepper = {init, step, release, invalidate, NULL};

@@ -1,18 +1,28 @@
 /* Stepper for drift–kick splitting methods on separable H = T(p) + V(q).
  * Stage i: drift q += a_i h ∇T(p), then kick p -= b_i h ∇V(q); zero coefficients are skipped.
- * When the first operation is a kick (a_0 = 0) and the last one too (b_{s-1} ≠ 0), the last
- * force of a step is the first of the next one and is reused (first same as last). */
+ * The table is compiled at create time into a flat list of operations, so a step is one loop
+ * over them. When the first operation is a kick and so is the last, the last force of a step
+ * is the first of the next and is reused (first same as last). */
 #include <stdlib.h>
 #include <string.h>
 
 #include "methods/internal.h"
 
 typedef struct {
+  double coef;   /* a_i (drift) or −b_i (kick) */
+  int kick;      /* 0: drift q, 1: kick p */
+  int first;     /* first update of its half in a step: read from the old state */
+  int eval_old;  /* the other half, where the gradient is evaluated, is still the old one */
+} split_op;
+
+typedef struct {
+  split_op *ops;
+  size_t n_ops;
   double *force;      /* ∇V at the last kick point */
   double *velocity;   /* ∇T at the last drift point */
   double *q_eval;     /* compensated mode: q + Δq */
   double *p_eval;     /* compensated mode: p + Δp */
-  int fsal;           /* the method's coefficients allow reuse */
+  int fsal;           /* first and last operations are kicks */
   int force_valid;    /* `force` holds ∇V at the current state's q */
 } splitting_work;
 
@@ -20,18 +30,36 @@ static gm_status init(gm_integrator *it) {
   splitting_work *w = calloc(1, sizeof *w);
   if (w == NULL) return GM_ENOMEM;
   it->work = w;
-  const size_t d = it->dim, s = it->method->n_stages;
+  const gm_method *m = it->method;
+  const size_t d = it->dim, s = m->n_stages;
+  w->ops = calloc(2 * s, sizeof *w->ops);
   w->force = calloc(d, sizeof(double));
   w->velocity = calloc(d, sizeof(double));
   w->q_eval = calloc(d, sizeof(double));
   w->p_eval = calloc(d, sizeof(double));
-  w->fsal = it->method->a[0] == 0.0 && it->method->b[s - 1] != 0.0;
-  return (w->force && w->velocity && w->q_eval && w->p_eval) ? GM_OK : GM_ENOMEM;
+  if (!w->ops || !w->force || !w->velocity || !w->q_eval || !w->p_eval) return GM_ENOMEM;
+  int q_touched = 0, p_touched = 0;
+  for (size_t i = 0; i < s; ++i) {
+    if (m->a[i] != 0.0) {
+      w->ops[w->n_ops++] = (split_op){m->a[i], 0, !q_touched, !p_touched};
+      q_touched = 1;
+    }
+    if (m->b[i] != 0.0) {
+      w->ops[w->n_ops++] = (split_op){-m->b[i], 1, !p_touched, !q_touched};
+      p_touched = 1;
+    }
+  }
+  if (!q_touched || !p_touched)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                   "method '%s' never updates %s", m->name, q_touched ? "p" : "q");
+  w->fsal = w->ops[0].kick && w->ops[w->n_ops - 1].kick;
+  return GM_OK;
 }
 
 static void release(gm_integrator *it) {
   splitting_work *w = it->work;
   if (w == NULL) return;
+  free(w->ops);
   free(w->force);
   free(w->velocity);
   free(w->q_eval);
@@ -46,38 +74,36 @@ static void invalidate(gm_integrator *it) {
 }
 
 /* dst = src + c·v (dst may equal src). */
-static void axpy_into(size_t d, double *dst, const double *src, double c, const double *v) {
+static inline void axpy_into(size_t d, double *dst, const double *src, double c, const double *v) {
   for (size_t i = 0; i < d; ++i) dst[i] = src[i] + c * v[i];
 }
 
-/* In place on a separate output buffer: each half of y_new is first written from y. */
-static gm_status step_direct(gm_integrator *it, double t, double h, const double *y,
+/* Writes y_new; each half is first written from y, then updated in place. */
+static inline gm_status step_direct(gm_integrator *it, double t, double h, const double *y,
                              double *y_new) {
   splitting_work *w = it->work;
-  const gm_method *m = it->method;
-  const size_t d = it->dim, s = m->n_stages;
-  const double *q = y, *p = y + d;
-  double *q_new = y_new, *p_new = y_new + d;
-  int reuse = w->fsal && w->force_valid;
+  const size_t d = it->dim;
+  const double *q_old = y, *p_old = y + d;
+  double *q = y_new, *p = y_new + d;
+  size_t k = 0;
+  if (w->fsal && w->force_valid) { /* the first kick reuses the last force */
+    axpy_into(d, p, p_old, w->ops[0].coef * h, w->force);
+    k = 1;
+  }
   w->force_valid = 0;
-  for (size_t i = 0; i < s; ++i) {
-    if (m->a[i] != 0.0) {
-      gm_status st = gm_eval_kinetic_gradient(it, t, p, w->velocity);
+  for (; k < w->n_ops; ++k) {
+    const split_op op = w->ops[k];
+    gm_status st;
+    if (op.kick) {
+      st = gm_eval_potential_gradient(it, t, op.eval_old ? q_old : q, w->force);
       if (st != GM_OK) return st;
-      axpy_into(d, q_new, q, m->a[i] * h, w->velocity);
-      q = q_new;
-    }
-    if (m->b[i] != 0.0) {
-      if (!(i == 0 && reuse)) {
-        gm_status st = gm_eval_potential_gradient(it, t, q, w->force);
-        if (st != GM_OK) return st;
-      }
-      axpy_into(d, p_new, p, -m->b[i] * h, w->force);
-      p = p_new;
+      axpy_into(d, p, op.first ? p_old : p, op.coef * h, w->force);
+    } else {
+      if ((st = gm_eval_kinetic_gradient(it, t, op.eval_old ? p_old : p, w->velocity)) != GM_OK)
+        return st;
+      axpy_into(d, q, op.first ? q_old : q, op.coef * h, w->velocity);
     }
   }
-  if (q != q_new) memcpy(q_new, q, d * sizeof *q);
-  if (p != p_new) memcpy(p_new, p, d * sizeof *p);
   w->force_valid = w->fsal;
   return GM_OK;
 }
@@ -86,24 +112,22 @@ static gm_status step_direct(gm_integrator *it, double t, double h, const double
 static gm_status step_increment(gm_integrator *it, double t, double h, const double *y,
                                 double *delta) {
   splitting_work *w = it->work;
-  const gm_method *m = it->method;
-  const size_t d = it->dim, s = m->n_stages;
+  const size_t d = it->dim;
   const double *q = y, *p = y + d;
   double *dq = delta, *dp = delta + d;
   memset(delta, 0, 2 * d * sizeof *delta);
   w->force_valid = 0;
-  for (size_t i = 0; i < s; ++i) {
-    if (m->a[i] != 0.0) {
-      axpy_into(d, w->p_eval, p, 1.0, dp);
-      gm_status st = gm_eval_kinetic_gradient(it, t, w->p_eval, w->velocity);
-      if (st != GM_OK) return st;
-      axpy_into(d, dq, dq, m->a[i] * h, w->velocity);
-    }
-    if (m->b[i] != 0.0) {
+  for (size_t k = 0; k < w->n_ops; ++k) {
+    const split_op op = w->ops[k];
+    gm_status st;
+    if (op.kick) {
       axpy_into(d, w->q_eval, q, 1.0, dq);
-      gm_status st = gm_eval_potential_gradient(it, t, w->q_eval, w->force);
-      if (st != GM_OK) return st;
-      axpy_into(d, dp, dp, -m->b[i] * h, w->force);
+      if ((st = gm_eval_potential_gradient(it, t, w->q_eval, w->force)) != GM_OK) return st;
+      axpy_into(d, dp, dp, op.coef * h, w->force);
+    } else {
+      axpy_into(d, w->p_eval, p, 1.0, dp);
+      if ((st = gm_eval_kinetic_gradient(it, t, w->p_eval, w->velocity)) != GM_OK) return st;
+      axpy_into(d, dq, dq, op.coef * h, w->velocity);
     }
   }
   return GM_OK;
@@ -114,4 +138,30 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
   return delta != NULL ? step_increment(it, t, h, y, delta) : step_direct(it, t, h, y, y_new);
 }
 
-const gm_stepper gm_splitting_stepper = {init, step, release, invalidate};
+/* The loop of a run inside the stepper: a Verlet step on a small problem costs about as much
+ * as the dispatch around it. The two state buffers live in registers during the loop (their
+ * swap through memory would sit on the step's critical path) and are written back after it. */
+static gm_status run(gm_integrator *it, const gm_run *r, size_t k_from, size_t k_to) {
+  double *y = it->y, *y_next = it->y_next, t = it->t;
+  gm_status st = GM_OK;
+  size_t k = k_from + 1;
+  for (; k <= k_to; ++k) {
+    st = step_direct(it, t, r->h, y, y_next);
+    if (st != GM_OK) break;
+    if (gm_first_nonfinite(it->n, y_next) < it->n) break;
+    double *tmp = y;
+    y = y_next;
+    y_next = tmp;
+    t = gm_run_time(r, k);
+  }
+  const size_t done = k - (k_from + 1);
+  it->y = y;
+  it->y_next = y_next;
+  it->t = t;
+  it->step_index += done;
+  it->stats.steps += done;
+  if (st == GM_OK && k <= k_to) st = gm_commit_step(it, gm_run_time(r, k)); /* reports it */
+  return st;
+}
+
+const gm_stepper gm_splitting_stepper = {init, step, release, invalidate, run};

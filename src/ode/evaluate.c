@@ -5,7 +5,7 @@
 
 #include "ode/internal.h"
 
-static gm_status callback_failed(gm_integrator *it, const char *name, int code, double t) {
+gm_status gm_callback_failed(gm_integrator *it, const char *name, int code, double t) {
   return gm_fail(it->errmsg, sizeof it->errmsg, GM_ECALLBACK,
                  "callback %s returned %d at t = %.17g", name, code, t);
 }
@@ -13,7 +13,7 @@ static gm_status callback_failed(gm_integrator *it, const char *name, int code, 
 #define CALL(expr, name)                                     \
   do {                                                       \
     int rc_ = (expr);                                        \
-    if (rc_ != 0) return callback_failed(it, name, rc_, t);  \
+    if (rc_ != 0) return gm_callback_failed(it, name, rc_, t);  \
   } while (0)
 
 gm_status gm_eval_rhs(gm_integrator *it, double t, const double *y, double *f) {
@@ -34,19 +34,6 @@ gm_status gm_eval_rhs(gm_integrator *it, double t, const double *y, double *f) {
       break;
   }
   for (size_t i = d; i < 2 * d; ++i) f[i] = -f[i];
-  return GM_OK;
-}
-
-gm_status gm_eval_potential_gradient(gm_integrator *it, double t, const double *q, double *g) {
-  const gm_problem *pb = it->problem;
-  it->stats.force_evals++;
-  CALL(pb->potential_gradient(pb->ctx, q, g), "potential_gradient");
-  return GM_OK;
-}
-
-gm_status gm_eval_kinetic_gradient(gm_integrator *it, double t, const double *p, double *g) {
-  const gm_problem *pb = it->problem;
-  CALL(pb->kinetic_gradient(pb->ctx, p, g), "kinetic_gradient");
   return GM_OK;
 }
 

@@ -153,44 +153,36 @@ static gm_status notify(gm_integrator *it, int all) {
   return GM_OK;
 }
 
+gm_status gm_nonfinite_state(gm_integrator *it, size_t component, double t_new) {
+  if (it->stepper->invalidate != NULL) it->stepper->invalidate(it);
+  return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
+                 "state component %zu became %g in the step from t = %.17g to t = %.17g",
+                 component + 1, it->y_next[component], it->t, t_new);
+}
+
 /* Advance one step of size h to the time t_new; the state is unchanged on failure. */
 static gm_status advance(gm_integrator *it, double h, double t_new) {
-  const size_t n = it->n;
-  gm_status st;
   if (!it->compensated) {
-    st = it->stepper->step(it, it->t, h, it->y, it->y_next, NULL);
-    if (st != GM_OK) return st;
-  } else {
-    st = it->stepper->step(it, it->t, h, it->y, NULL, it->delta);
-    if (st != GM_OK) return st;
-    /* Compensated summation, Hairer–Lubich–Wanner GNI (2006) §VIII.5, Algorithm 5.1:
-     * the rounding error of y + Δy is carried into the next step. */
-    for (size_t i = 0; i < n; ++i) {
-      double e = it->carry[i] + it->delta[i];
-      double b = it->y[i] + e;
-      it->carry_next[i] = (it->y[i] - b) + e;
-      it->y_next[i] = b;
-    }
+    gm_status st = it->stepper->step(it, it->t, h, it->y, it->y_next, NULL);
+    return st != GM_OK ? st : gm_commit_step(it, t_new);
   }
-  size_t bad = gm_first_nonfinite(n, it->y_next);
-  if (bad < n) {
-    if (it->stepper->invalidate != NULL) it->stepper->invalidate(it);
-    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
-                   "state component %zu became %g in the step from t = %.17g to t = %.17g",
-                   bad + 1, it->y_next[bad], it->t, t_new);
+  gm_status st = it->stepper->step(it, it->t, h, it->y, NULL, it->delta);
+  if (st != GM_OK) return st;
+  /* Compensated summation, Hairer–Lubich–Wanner GNI (2006) §VIII.5, Algorithm 5.1:
+   * the rounding error of y + Δy is carried into the next step. */
+  for (size_t i = 0; i < it->n; ++i) {
+    double e = it->carry[i] + it->delta[i];
+    double b = it->y[i] + e;
+    it->carry_next[i] = (it->y[i] - b) + e;
+    it->y_next[i] = b;
   }
-  double *tmp = it->y;
-  it->y = it->y_next;
-  it->y_next = tmp;
-  if (it->compensated) {
-    tmp = it->carry;
+  st = gm_commit_step(it, t_new);
+  if (st == GM_OK) {
+    double *tmp = it->carry;
     it->carry = it->carry_next;
     it->carry_next = tmp;
   }
-  it->t = t_new;
-  it->step_index++;
-  it->stats.steps++;
-  return GM_OK;
+  return st;
 }
 
 static gm_status check_step(gm_integrator *it, double h) {
@@ -209,14 +201,37 @@ gm_status gm_integrator_step(gm_integrator *it, double h) {
   return st;
 }
 
-/* n steps of size h from the current time t0; times are t0 + k·h (no accumulated drift),
- * and the last is t_last exactly. */
+/* The step index (since set_state) at which the next observer is due, after `from`. */
+static size_t next_observation(const gm_integrator *it, size_t from) {
+  size_t next = SIZE_MAX;
+  for (size_t k = 0; k < it->n_observers; ++k) {
+    size_t every = it->observers[k].every, due = (from / every + 1) * every;
+    if (due < next) next = due;
+  }
+  return next;
+}
+
+/* Steps k_from+1 .. k_to of the run, one at a time or by the stepper's own loop. */
+static gm_status run_chunk(gm_integrator *it, const gm_run *run, size_t k_from, size_t k_to) {
+  if (it->stepper->run != NULL && !it->compensated)
+    return it->stepper->run(it, run, k_from, k_to);
+  gm_status st = GM_OK;
+  for (size_t k = k_from + 1; k <= k_to && st == GM_OK; ++k)
+    st = advance(it, run->h, gm_run_time(run, k));
+  return st;
+}
+
+/* n steps of size h from the current time; times are t0 + k·h (no accumulated drift), the
+ * last is t_last exactly. Observers are called between chunks of steps, so how often a run
+ * is observed never changes what it computes. */
 static gm_status run_steps(gm_integrator *it, size_t n_steps, double h, double t_last) {
+  const gm_run run = {it->t, h, t_last, n_steps};
   gm_status st = notify(it, it->step_index == 0);
-  const double t0 = it->t;
-  for (size_t k = 1; k <= n_steps && st == GM_OK; ++k) {
-    double t_new = k == n_steps ? t_last : t0 + (double)k * h;
-    st = advance(it, h, t_new);
+  for (size_t k = 0; k < n_steps && st == GM_OK;) {
+    size_t due = next_observation(it, it->step_index) - it->step_index;
+    size_t k_to = due < n_steps - k ? k + due : n_steps;
+    st = run_chunk(it, &run, k, k_to);
+    k = k_to;
     if (st == GM_OK) st = notify(it, 0);
   }
   if (st == GM_OK) st = notify(it, 1);

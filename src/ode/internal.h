@@ -17,12 +17,25 @@ typedef struct gm_observer_entry {
 /* A stepper advances y_old (read-only) by h. Without compensation it writes y_new; with it
  * (delta != NULL) it writes the increment delta = y_new − y_old instead, computed so that
  * small increments keep their digits. On failure y_old is untouched and it->errmsg says why. */
+/* A run of n_steps steps of size h from t0: step k ends at t0 + k·h, the last at t_last. */
+typedef struct gm_run {
+  double t0, h, t_last;
+  size_t n_steps;
+} gm_run;
+
+static inline double gm_run_time(const gm_run *run, size_t k) {
+  return k == run->n_steps ? run->t_last : run->t0 + (double)k * run->h;
+}
+
 typedef struct gm_stepper {
   gm_status (*init)(gm_integrator *it);   /* allocate it->work; every array a step needs */
   gm_status (*step)(gm_integrator *it, double t, double h, const double *y_old, double *y_new,
                     double *delta);
   void (*release)(gm_integrator *it);     /* free it->work */
   void (*invalidate)(gm_integrator *it);  /* drop caches after an external change of state */
+  /* Optional: steps k_from+1 .. k_to of `run` without compensation, each committed with
+   * gm_commit_step. Saves the per-step dispatch where a step costs little. */
+  gm_status (*run)(gm_integrator *it, const gm_run *run, size_t k_from, size_t k_to);
 } gm_stepper;
 
 struct gm_integrator {
@@ -54,11 +67,40 @@ struct gm_integrator {
 gm_status gm_eval_rhs(gm_integrator *it, double t, const double *y, double *f);
 /* ∂f/∂y (n×n row-major), analytic when the problem has it, else central differences. */
 gm_status gm_eval_rhs_jacobian(gm_integrator *it, double t, const double *y, double *jac);
-/* Separable kinds: ∇V(q) (counted as a force evaluation) and ∇T(p). */
-gm_status gm_eval_potential_gradient(gm_integrator *it, double t, const double *q, double *g);
-gm_status gm_eval_kinetic_gradient(gm_integrator *it, double t, const double *p, double *g);
+/* Report a failed user callback: writes it->errmsg, returns GM_ECALLBACK. */
+gm_status gm_callback_failed(gm_integrator *it, const char *name, int code, double t);
+/* Separable kinds: ∇V(q) (counted as a force evaluation) and ∇T(p). Inline: splitting
+ * methods call them once per stage, and the call should cost no more than the user's. */
+static inline gm_status gm_eval_potential_gradient(gm_integrator *it, double t, const double *q,
+                                                   double *g) {
+  const gm_problem *pb = it->problem;
+  it->stats.force_evals++;
+  int rc = pb->potential_gradient(pb->ctx, q, g);
+  return rc == 0 ? GM_OK : gm_callback_failed(it, "potential_gradient", rc, t);
+}
+static inline gm_status gm_eval_kinetic_gradient(gm_integrator *it, double t, const double *p,
+                                                 double *g) {
+  const gm_problem *pb = it->problem;
+  int rc = pb->kinetic_gradient(pb->ctx, p, g);
+  return rc == 0 ? GM_OK : gm_callback_failed(it, "kinetic_gradient", rc, t);
+}
 /* Does the problem provide an analytic Jacobian in its kind? */
 int gm_problem_has_jacobian(const gm_problem *problem);
+
+/* Accept the state the stepper wrote into it->y_next as the state at t_new: check it is
+ * finite, then swap buffers. On failure the state stays at the last good step. */
+gm_status gm_nonfinite_state(gm_integrator *it, size_t component, double t_new);
+static inline gm_status gm_commit_step(gm_integrator *it, double t_new) {
+  size_t bad = gm_first_nonfinite(it->n, it->y_next);
+  if (bad < it->n) return gm_nonfinite_state(it, bad, t_new);
+  double *tmp = it->y;
+  it->y = it->y_next;
+  it->y_next = tmp;
+  it->t = t_new;
+  it->step_index++;
+  it->stats.steps++;
+  return GM_OK;
+}
 
 /* ---- steppers (src/methods) ------------------------------------------------------------ */
 const gm_stepper *gm_stepper_for(const gm_method *method);
