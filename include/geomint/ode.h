@@ -151,6 +151,7 @@ typedef struct gm_order_result {
                                           over the levels whose error is above round-off */
   size_t n_fitted;                     /* levels used in the fit */
   int reference_is_exact;              /* 1: the problem's exact solution; 0: a reference run */
+  const struct gm_method *reference;   /* the reference method, NULL when exact */
 } gm_order_result;
 
 /* Integrate from (t0, y0) to t_end with steps dt0, dt0/2, ... (n_levels ≤ GM_ORDER_MAX_LEVELS)

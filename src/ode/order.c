@@ -64,6 +64,7 @@ gm_status gm_order_measure(const gm_method *method, const gm_problem *problem, d
       st = gm_error_set(err, GM_ECALLBACK, "the exact solution failed at t = %g", t_end);
   } else {
     if (reference == NULL) reference = default_reference(problem);
+    out->reference = reference;
     if (reference == NULL)
       st = gm_error_set(err, GM_EUNSUPPORTED, "no exact solution and no reference method");
     else

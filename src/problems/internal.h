@@ -30,5 +30,6 @@ extern const gm_model_def gm_model_harmonic;
 extern const gm_model_def gm_model_pendulum;
 extern const gm_model_def gm_model_kepler;
 extern const gm_model_def gm_model_henon_heiles;
+extern const gm_model_def gm_model_lotka_volterra;
 
 #endif

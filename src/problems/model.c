@@ -12,6 +12,7 @@ static const gm_model_def *const defs[] = {
     &gm_model_pendulum,
     &gm_model_kepler,
     &gm_model_henon_heiles,
+    &gm_model_lotka_volterra,
 };
 static const size_t n_defs = sizeof defs / sizeof defs[0];
 
@@ -161,6 +162,19 @@ gm_status gm_model_build(gm_model *m) {
   if (m->n_overrides > 0) {
     if (def->initial_changed == NULL || !def->initial_changed(m->ctx, m->y0))
       m->problem.exact = NULL;
+  }
+  /* An initial state where the energy or an invariant is not finite (a collision, a log of a
+   * non-positive population) is no state the problem can start from. */
+  if (gm_problem_has_energy(&m->problem) && !isfinite(gm_problem_energy(&m->problem, m->y0)))
+    return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                   "%s: the energy of the initial state is %g (a singular point)", def->info.name,
+                   gm_problem_energy(&m->problem, m->y0));
+  for (size_t k = 0; k < m->problem.n_invariants; ++k) {
+    double v = m->problem.invariants[k].value(m->ctx, m->y0);
+    if (!isfinite(v))
+      return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                     "%s: the invariant %s of the initial state is %g (a singular point)",
+                     def->info.name, m->problem.invariants[k].name, v);
   }
   m->built = 1;
   return GM_OK;

@@ -19,7 +19,10 @@ Test(problems, gradients_and_hessians_match_differences) {
   for (size_t k = 0; k < gm_model_count(); ++k) {
     test_model tm = test_model_make(gm_model_info_at(k)->name);
     const gm_problem *pb = tm.problem;
-    cr_assert_eq(pb->kind, GM_PROBLEM_SEPARABLE);
+    if (pb->kind != GM_PROBLEM_SEPARABLE) {
+      gm_model_free(tm.model);
+      continue;
+    }
     const size_t d = pb->dim;
     double q[32], p[32], g[32], g2[32], hess[1024];
     for (size_t i = 0; i < d; ++i) {
@@ -120,6 +123,66 @@ Test(problems, kepler_defaults_and_parameters) {
   cr_expect_null(gm_model_problem(m)->exact);
   gm_model_initial_state(m, &t0, y);
   cr_expect_eq(y[3], 1.2);
+  gm_model_free(m);
+}
+
+/* First-order problems: the analytic Jacobian agrees with central differences of f. */
+Test(problems, first_order_jacobians_match_differences) {
+  for (size_t k = 0; k < gm_model_count(); ++k) {
+    test_model tm = test_model_make(gm_model_info_at(k)->name);
+    const gm_problem *pb = tm.problem;
+    if (pb->kind != GM_PROBLEM_FIRST_ORDER) {
+      gm_model_free(tm.model);
+      continue;
+    }
+    const size_t n = tm.n;
+    double y[32], yp[32], fp[32], fm[32], jac[1024];
+    memcpy(y, tm.y0, n * sizeof *y);
+    y[0] += 0.2;
+    cr_assert_not_null(pb->rhs_jacobian);
+    cr_assert_eq(pb->rhs_jacobian(pb->ctx, 0.0, y, jac), 0);
+    for (size_t j = 0; j < n; ++j) {
+      memcpy(yp, y, n * sizeof *y);
+      yp[j] = y[j] + 1e-6;
+      pb->rhs(pb->ctx, 0.0, yp, fp);
+      yp[j] = y[j] - 1e-6;
+      pb->rhs(pb->ctx, 0.0, yp, fm);
+      for (size_t i = 0; i < n; ++i)
+        cr_expect(fabs((fp[i] - fm[i]) / 2e-6 - jac[i * n + j]) < 1e-7, "%s jacobian (%zu,%zu)",
+                  gm_model_info_at(k)->name, i, j);
+    }
+    gm_model_free(tm.model);
+  }
+}
+
+/* Lotka–Volterra's invariant is kept by an accurate integration (RK4, small steps) and
+ * splitting methods refuse the problem (it is not separable Hamiltonian). */
+Test(problems, lotka_volterra_invariant_and_kind) {
+  test_model tm = test_model_make("lotka-volterra");
+  cr_expect_eq(tm.problem->kind, GM_PROBLEM_FIRST_ORDER);
+  cr_expect(!test_accepts(gm_method_find("verlet"), tm.problem));
+  gm_integrator *it = test_integrator(gm_method_find("rk4"), tm.problem, 0.0, tm.y0);
+  gm_monitor *mon = NULL;
+  cr_assert_eq(gm_monitor_create(tm.problem, tm.y0, &mon), GM_OK);
+  cr_assert_eq(gm_integrator_add_observer(it, gm_monitor_observe, mon, 1), GM_OK);
+  cr_assert_eq(gm_integrator_integrate(it, 20.0, 1e-3), GM_OK);
+  cr_expect_lt(gm_monitor_max_invariant_drift(mon, 0), 1e-10, "%.2e",
+               gm_monitor_max_invariant_drift(mon, 0));
+  gm_monitor_free(mon);
+  gm_integrator_free(it);
+  gm_model_free(tm.model);
+}
+
+Test(problems, singular_initial_state_is_an_error) {
+  gm_model *m = NULL;
+  cr_assert_eq(gm_model_create("kepler", &m), GM_OK);
+  cr_expect_eq(gm_model_set(m, "q1", 0.0), GM_OK);
+  cr_expect_eq(gm_model_build(m), GM_EINVAL); /* q = 0: V = −inf */
+  cr_expect(strstr(gm_model_errmsg(m), "energy") != NULL, "%s", gm_model_errmsg(m));
+  gm_model_free(m);
+  cr_assert_eq(gm_model_create("lotka-volterra", &m), GM_OK);
+  cr_expect_eq(gm_model_set(m, "y1", -1.0), GM_OK);
+  cr_expect_eq(gm_model_build(m), GM_EINVAL); /* log of a negative population */
   gm_model_free(m);
 }
 

@@ -1,0 +1,141 @@
+/* Private declarations of the geomint program; each concern lives in its own file. */
+#ifndef GM_CLI_H
+#define GM_CLI_H
+
+#include <stddef.h>
+
+#include "geomint/geomint.h"
+
+/* Exit statuses: success, a failure while running, bad input. */
+#define CLI_EXIT_OK 0
+#define CLI_EXIT_FAILURE 1
+#define CLI_EXIT_USAGE 2
+#define CLI_HELP (-1) /* the parser saw --help: print the command's usage, exit 0 */
+
+/* ---- commands (list.c, run.c, order.c, demo.c) ----------------------------------------- */
+typedef struct cli_command {
+  const char *name;
+  const char *summary;
+  const char *usage;
+  int (*main)(int argc, char **argv); /* argv[0] is the first argument after the name */
+} cli_command;
+
+extern const cli_command cli_list_command, cli_run_command, cli_order_command,
+    cli_demo_command;
+
+/* "geomint COMMAND: message" on stderr, one line. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+void cli_error(const char *command, const char *fmt, ...);
+
+/* ---- options (args.c) ------------------------------------------------------------------- */
+#define CLI_MAX_SETTINGS 64
+typedef struct cli_settings {
+  size_t n;
+  const char *items[CLI_MAX_SETTINGS]; /* "name=value", borrowed from argv, checked */
+} cli_settings;
+
+typedef enum cli_arg_type {
+  CLI_ARG_FLAG,     /* int: set to 1 */
+  CLI_ARG_STRING,   /* const char * */
+  CLI_ARG_DOUBLE,   /* double: any number, checked by the command */
+  CLI_ARG_COUNT,    /* size_t: a non-negative integer */
+  CLI_ARG_SETTING   /* cli_settings: name=value, repeatable */
+} cli_arg_type;
+
+typedef struct cli_option {
+  const char *name; /* "--dt" */
+  cli_arg_type type;
+  void *target;
+  int seen;         /* set by the parser */
+} cli_option;
+
+/* Parse argv into options (accepting "--name value" and "--name=value") and positional
+ * arguments (at most max_positional). Returns CLI_EXIT_OK, CLI_HELP, or CLI_EXIT_USAGE after
+ * printing why. */
+int cli_parse(const char *command, int argc, char **argv, cli_option *options,
+              size_t n_options, const char **positional, size_t max_positional,
+              size_t *n_positional);
+/* Split a checked "name=value" setting; name is written to buf (capacity cap). */
+void cli_setting_split(const char *item, char *name, size_t cap, double *value);
+/* Check a step size or time given on the command line: finite and > 0. */
+int cli_check_positive(const char *command, const char *option, double value);
+
+/* ---- suggestions (suggest.c) ------------------------------------------------------------ */
+/* The i-th candidate name, NULL past the end. */
+typedef const char *(*cli_name_at)(const void *ctx, size_t i);
+/* Restricted Damerau–Levenshtein distance (case-insensitive). */
+size_t cli_edit_distance(const char *a, const char *b);
+/* Write the names closest to query as "a, b, c" into buf; returns how many. */
+size_t cli_suggest(const char *query, cli_name_at name_at, const void *ctx, char *buf,
+                   size_t cap);
+const char *cli_method_name_at(const void *ctx, size_t i);
+const char *cli_problem_name_at(const void *ctx, size_t i);
+/* "unknown KIND 'query'; did you mean: a, b?" or a hint where to look, on stderr. */
+void cli_unknown(const char *command, const char *kind, const char *query, cli_name_at name_at,
+                 const void *ctx, const char *hint);
+
+/* ---- problems and methods by name (setup.c) -------------------------------------------- */
+/* NULL after printing an error with suggestions. */
+const gm_method *cli_find_method(const char *command, const char *name);
+/* Create, set and build a model; returns an exit status (message printed on failure). */
+int cli_open_model(const char *command, const char *name, const cli_settings *settings,
+                   gm_model **out);
+/* Index of the invariant whose name contains `part`, or (size_t)-1. */
+size_t cli_find_invariant(const gm_problem *problem, const char *part);
+
+/* ---- one integration (simulate.c) ------------------------------------------------------- */
+typedef struct cli_sim_config {
+  const gm_method *method;
+  const gm_model *model;
+  double dt;
+  double t_end;           /* used when n_steps == 0: integrate to exactly t_end */
+  size_t n_steps;         /* > 0: that many steps of dt */
+  size_t monitor_every;
+  size_t csv_every;
+  const char *csv_path;   /* NULL: no CSV */
+  int compensated;
+} cli_sim_config;
+
+typedef struct cli_sim_result {
+  gm_stats stats;
+  double wall_s;
+  double t0, t_final;
+  size_t n_state;
+  double *y_final;        /* owned */
+  gm_monitor *monitor;    /* owned */
+  size_t csv_rows;
+  size_t energy_column;   /* 0-based CSV column of rel_energy_error, (size_t)-1 if none */
+} cli_sim_result;
+
+/* Run one integration; returns an exit status, printing the reason on failure. The CSV is
+ * closed (and kept) in every case. */
+int cli_simulate(const char *command, const cli_sim_config *config, cli_sim_result *result);
+void cli_sim_result_clear(cli_sim_result *result);
+
+/* ---- JSON (json.c) ---------------------------------------------------------------------- */
+struct cJSON;
+/* A number, or null when x is NaN or infinite. */
+struct cJSON *cli_json_number(double x);
+struct cJSON *cli_json_numbers(const double *x, size_t n);
+/* Print root and a newline on stdout, then free root. Returns an exit status. */
+int cli_json_print(struct cJSON *root);
+
+/* ---- plots (plot.c) --------------------------------------------------------------------- */
+typedef struct cli_plot_series {
+  const char *csv_path;
+  const char *title;
+  size_t column; /* 0-based column of the relative energy error */
+} cli_plot_series;
+
+/* Is a gnuplot program on PATH? */
+int cli_gnuplot_available(void);
+/* Can png_path be written (its directory exists and is writable)? Prints why not. */
+int cli_plot_check_output(const char *command, const char *png_path);
+/* Draw the relative energy errors of the series against time (log y) into png_path.
+ * Returns an exit status; prints the reason on failure. */
+int cli_plot_energy_error(const char *command, const char *png_path, const char *title,
+                          const cli_plot_series *series, size_t n_series);
+
+#endif

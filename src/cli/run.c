@@ -1,0 +1,223 @@
+/* geomint run PROBLEM: integrate one problem with one method; summary, JSON, CSV, plot. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <cJSON.h>
+
+#include "cli/cli.h"
+
+static const char usage[] =
+    "usage: geomint run PROBLEM [--method NAME] [--dt H] [--t-end T | --steps N] [--every K]\n"
+    "                   [--out FILE.csv] [--plot FILE.png] [--set name=value ...]\n"
+    "                   [--compensated] [--json]\n\n"
+    "Integrate PROBLEM (see 'geomint list problems') from its initial state.\n\n"
+    "options:\n"
+    "  --method NAME      integration method (default verlet; see 'geomint list methods')\n"
+    "  --dt H             step size (default 0.01)\n"
+    "  --t-end T          final time (default 10); the steps are shortened to end exactly there\n"
+    "  --steps N          take N steps of size H instead (not together with --t-end)\n"
+    "  --every K          observe (monitor and CSV) every K steps (default 1)\n"
+    "  --out FILE.csv     write t, q, p (or y), H, rel_energy_error and the invariants\n"
+    "  --plot FILE.png    draw the relative energy error against time with gnuplot\n"
+    "  --set name=value   change a parameter or an initial value (q1.., p1.., y1..); repeatable\n"
+    "  --compensated      compensated (Kahan) summation of the state update\n"
+    "  --json             print one JSON object instead of the summary\n";
+
+typedef struct run_options {
+  const char *method;
+  double dt, t_end;
+  size_t steps, every;
+  const char *out, *plot;
+  cli_settings settings;
+  int compensated, json;
+} run_options;
+
+static cJSON *final_state(const gm_problem *pb, const cli_sim_result *r) {
+  cJSON *final = cJSON_CreateObject();
+  cJSON_AddItemToObject(final, "t", cli_json_number(r->t_final));
+  if (gm_problem_has_energy(pb)) {
+    cJSON_AddItemToObject(final, "q", cli_json_numbers(r->y_final, pb->dim));
+    cJSON_AddItemToObject(final, "p", cli_json_numbers(r->y_final + pb->dim, pb->dim));
+  } else {
+    cJSON_AddItemToObject(final, "y", cli_json_numbers(r->y_final, r->n_state));
+  }
+  return final;
+}
+
+static int print_json(const char *problem, const gm_method *m, const gm_problem *pb,
+                      const run_options *o, const cli_sim_result *r) {
+  cJSON *root = cJSON_CreateObject();
+  cJSON_AddStringToObject(root, "problem", problem);
+  cJSON_AddStringToObject(root, "method", m->name);
+  cJSON_AddNumberToObject(root, "dt", o->dt);
+  cJSON_AddNumberToObject(root, "steps", (double)r->stats.steps);
+  cJSON_AddItemToObject(root, "t0", cli_json_number(r->t0));
+  cJSON_AddItemToObject(root, "t_end", cli_json_number(r->t_final));
+  cJSON_AddNumberToObject(root, "force_evals", (double)r->stats.force_evals);
+  cJSON_AddNumberToObject(root, "jacobian_evals", (double)r->stats.jacobian_evals);
+  cJSON_AddNumberToObject(root, "fd_jacobians", (double)r->stats.fd_jacobians);
+  cJSON_AddNumberToObject(root, "newton_iterations", (double)r->stats.newton_iterations);
+  cJSON_AddNumberToObject(root, "wall_s", r->wall_s);
+  cJSON_AddBoolToObject(root, "compensated", o->compensated != 0);
+  cJSON_AddNumberToObject(root, "every", (double)o->every);
+  cJSON_AddItemToObject(root, "initial_energy",
+                        cli_json_number(gm_monitor_initial_energy(r->monitor)));
+  cJSON_AddItemToObject(root, "max_rel_energy_error",
+                        cli_json_number(gm_monitor_max_rel_energy_error(r->monitor)));
+  cJSON_AddItemToObject(root, "final_rel_energy_error",
+                        cli_json_number(gm_monitor_last_rel_energy_error(r->monitor)));
+  cJSON *inv = cJSON_AddObjectToObject(root, "invariants");
+  for (size_t k = 0; k < pb->n_invariants; ++k)
+    cJSON_AddItemToObject(inv, pb->invariants[k].name,
+                          cli_json_number(gm_monitor_max_invariant_drift(r->monitor, k)));
+  cJSON_AddItemToObject(root, "final", final_state(pb, r));
+  if (o->out != NULL) {
+    cJSON_AddStringToObject(root, "csv", o->out);
+    cJSON_AddNumberToObject(root, "csv_rows", (double)r->csv_rows);
+  }
+  if (o->plot != NULL) cJSON_AddStringToObject(root, "plot", o->plot);
+  return cli_json_print(root);
+}
+
+static void print_vector(const char *label, const double *x, size_t n) {
+  printf("  %-3s =", label);
+  for (size_t i = 0; i < n; ++i) printf(" %.10g", x[i]);
+  putchar('\n');
+}
+
+static void print_summary(const char *problem, const gm_method *m, const gm_problem *pb,
+                          const run_options *o, const cli_sim_result *r) {
+  printf("%s with %s (order %d, %s%s)\n", problem, m->name, m->order,
+         gm_method_family_name(m->family), o->compensated ? ", compensated" : "");
+  printf("steps             %zu of dt = %g, t = %g .. %.10g\n", r->stats.steps, o->dt, r->t0,
+         r->t_final);
+  if (gm_problem_has_energy(pb)) {
+    printf("energy            H0 = %.10g\n", gm_monitor_initial_energy(r->monitor));
+    printf("rel. energy error max %.3e, final %.3e\n",
+           gm_monitor_max_rel_energy_error(r->monitor),
+           gm_monitor_last_rel_energy_error(r->monitor));
+  }
+  for (size_t k = 0; k < pb->n_invariants; ++k)
+    printf("%-17s max drift %.3e\n", pb->invariants[k].name,
+           gm_monitor_max_invariant_drift(r->monitor, k));
+  printf("work              %zu force evaluations, %zu Newton iterations, %.3f s\n",
+         r->stats.force_evals, r->stats.newton_iterations, r->wall_s);
+  if (r->stats.fd_jacobians > 0)
+    printf("note              %zu finite-difference Jacobians (no analytic Hessian)\n",
+           r->stats.fd_jacobians);
+  printf("final state at t = %.10g:\n", r->t_final);
+  if (gm_problem_has_energy(pb)) {
+    print_vector("q", r->y_final, pb->dim);
+    print_vector("p", r->y_final + pb->dim, pb->dim);
+  } else {
+    print_vector("y", r->y_final, r->n_state);
+  }
+  if (o->out != NULL) printf("wrote %s (%zu rows)\n", o->out, r->csv_rows);
+  if (o->plot != NULL) printf("wrote %s\n", o->plot);
+}
+
+static int check_options(const run_options *o, const cli_option *options) {
+  /* options[] order: see run_main */
+  if (cli_check_positive("run", "--dt", o->dt) != CLI_EXIT_OK) return CLI_EXIT_USAGE;
+  if (options[2].seen && options[3].seen) {
+    cli_error("run", "give either --t-end or --steps, not both");
+    return CLI_EXIT_USAGE;
+  }
+  if (cli_check_positive("run", "--t-end", o->t_end) != CLI_EXIT_OK) return CLI_EXIT_USAGE;
+  if (options[3].seen && o->steps == 0) {
+    cli_error("run", "--steps must be at least 1");
+    return CLI_EXIT_USAGE;
+  }
+  if (o->every == 0) {
+    cli_error("run", "--every must be at least 1");
+    return CLI_EXIT_USAGE;
+  }
+  return CLI_EXIT_OK;
+}
+
+/* Integrate, then plot; returns an exit status. tmp_csv: a temporary file for the plot. */
+static int run_model(const char *problem, const gm_model *model, const gm_method *m,
+                     const run_options *o, const char *tmp_csv) {
+  const gm_problem *pb = gm_model_problem(model);
+  cli_sim_config c = {m, model, o->dt, o->t_end, o->steps, o->every, o->every,
+                      o->out != NULL ? o->out : tmp_csv, o->compensated};
+  cli_sim_result r;
+  int status = cli_simulate("run", &c, &r);
+  if (status == CLI_EXIT_OK && o->plot != NULL) {
+    char title[256];
+    snprintf(title, sizeof title, "%s, %s, dt = %g", problem, m->name, o->dt);
+    cli_plot_series s = {c.csv_path, m->name, r.energy_column};
+    status = cli_plot_energy_error("run", o->plot, title, &s, 1);
+  }
+  if (status == CLI_EXIT_OK) {
+    if (o->json)
+      status = print_json(problem, m, pb, o, &r);
+    else
+      print_summary(problem, m, pb, o, &r);
+  }
+  cli_sim_result_clear(&r);
+  return status;
+}
+
+static int run_main(int argc, char **argv) {
+  run_options o = {"verlet", 0.01, 10.0, 0, 1, NULL, NULL, {0, {0}}, 0, 0};
+  cli_option options[] = {
+      {"--method", CLI_ARG_STRING, &o.method, 0}, {"--dt", CLI_ARG_DOUBLE, &o.dt, 0},
+      {"--t-end", CLI_ARG_DOUBLE, &o.t_end, 0},   {"--steps", CLI_ARG_COUNT, &o.steps, 0},
+      {"--every", CLI_ARG_COUNT, &o.every, 0},    {"--out", CLI_ARG_STRING, &o.out, 0},
+      {"--plot", CLI_ARG_STRING, &o.plot, 0},     {"--set", CLI_ARG_SETTING, &o.settings, 0},
+      {"--compensated", CLI_ARG_FLAG, &o.compensated, 0},
+      {"--json", CLI_ARG_FLAG, &o.json, 0}};
+  const char *problem[1];
+  size_t n_problem = 0;
+  int status = cli_parse("run", argc, argv, options, sizeof options / sizeof options[0],
+                         problem, 1, &n_problem);
+  if (status == CLI_HELP) {
+    fputs(usage, stdout);
+    return CLI_EXIT_OK;
+  }
+  if (status != CLI_EXIT_OK) return status;
+  if (n_problem == 0) {
+    cli_error("run", "which problem? e.g. 'geomint run kepler' (see 'geomint list problems')");
+    return CLI_EXIT_USAGE;
+  }
+  if ((status = check_options(&o, options)) != CLI_EXIT_OK) return status;
+  const gm_method *m = cli_find_method("run", o.method);
+  if (m == NULL) return CLI_EXIT_USAGE;
+  gm_model *model = NULL;
+  if ((status = cli_open_model("run", problem[0], &o.settings, &model)) != CLI_EXIT_OK)
+    return status;
+
+  char tmp_csv[] = "/tmp/geomint-plot-XXXXXX";
+  int have_tmp = 0;
+  if (o.plot != NULL) {
+    if (!gm_problem_has_energy(gm_model_problem(model))) {
+      cli_error("run", "--plot: %s is a first-order problem without an energy to plot",
+                problem[0]);
+      status = CLI_EXIT_USAGE;
+    } else if (!cli_gnuplot_available()) {
+      cli_error("run", "--plot: gnuplot is not installed (or not on PATH)");
+      status = CLI_EXIT_FAILURE;
+    } else if ((status = cli_plot_check_output("run", o.plot)) != CLI_EXIT_OK) {
+      /* reported */
+    } else if (o.out == NULL) {
+      int fd = mkstemp(tmp_csv);
+      if (fd < 0) {
+        cli_error("run", "--plot: cannot create a temporary file in /tmp");
+        status = CLI_EXIT_FAILURE;
+      } else {
+        close(fd);
+        have_tmp = 1;
+      }
+    }
+  }
+  if (status == CLI_EXIT_OK)
+    status = run_model(problem[0], model, m, &o, have_tmp ? tmp_csv : NULL);
+  if (have_tmp) remove(tmp_csv);
+  gm_model_free(model);
+  return status;
+}
+
+const cli_command cli_run_command = {"run", "integrate a problem with a method", usage,
+                                     run_main};

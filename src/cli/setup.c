@@ -1,0 +1,105 @@
+/* Problems and methods by name, with the messages a user sees when a name is wrong. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+
+const gm_method *cli_find_method(const char *command, const char *name) {
+  const gm_method *m = gm_method_find(name);
+  if (m == NULL)
+    cli_unknown(command, "method", name, cli_method_name_at, NULL,
+                "see 'geomint list methods'");
+  return m;
+}
+
+/* Names gm_model_set accepts: the parameters, then q1..qd, p1..pd or y1..yn. */
+typedef struct setting_names {
+  const gm_model_info *info;
+  char buf[32];
+} setting_names;
+
+static const char *setting_name_at(const void *ctx, size_t i) {
+  setting_names *s = (setting_names *)ctx;
+  const gm_model_info *info = s->info;
+  if (i < info->n_params) return info->params[i].name;
+  i -= info->n_params;
+  int hamiltonian = info->kind != GM_PROBLEM_FIRST_ORDER;
+  size_t d = info->default_dim, n = hamiltonian ? 2 * d : d;
+  if (i >= n) return NULL;
+  if (hamiltonian)
+    snprintf(s->buf, sizeof s->buf, "%c%zu", i < d ? 'q' : 'p', i % d + 1);
+  else
+    snprintf(s->buf, sizeof s->buf, "y%zu", i + 1);
+  return s->buf;
+}
+
+static int is_setting_name(const gm_model_info *info, const char *name) {
+  setting_names s = {info, {0}};
+  for (size_t i = 0;; ++i) {
+    const char *c = setting_name_at(&s, i);
+    if (c == NULL) return 0;
+    if (strcmp(c, name) == 0) return 1;
+  }
+}
+
+/* The library's message, prefixed with the problem's name unless it already says it. */
+static void model_error(const char *command, const char *name, const char *setting,
+                        const char *message) {
+  const char *sep = strstr(message, name) == message ? "" : ": ";
+  const char *prefix = sep[0] != '\0' ? name : "";
+  if (setting != NULL)
+    cli_error(command, "--set %s: %s%s%s", setting, prefix, sep, message);
+  else
+    cli_error(command, "%s%s%s", prefix, sep, message);
+}
+
+
+int cli_open_model(const char *command, const char *name, const cli_settings *settings,
+                   gm_model **out) {
+  *out = NULL;
+  gm_model *model = NULL;
+  if (gm_model_create(name, &model) != GM_OK) {
+    if (gm_model_info_find(name) == NULL) {
+      cli_unknown(command, "problem", name, cli_problem_name_at, NULL,
+                  "see 'geomint list problems'");
+      return CLI_EXIT_USAGE;
+    }
+    cli_error(command, "%s: cannot create the model (out of memory)", name);
+    return CLI_EXIT_FAILURE;
+  }
+  const gm_model_info *info = gm_model_info_of(model);
+  for (size_t k = 0; settings != NULL && k < settings->n; ++k) {
+    char key[64];
+    double value;
+    cli_setting_split(settings->items[k], key, sizeof key, &value);
+    if (gm_model_set(model, key, value) == GM_OK) continue;
+    if (info != NULL && !is_setting_name(info, key)) {
+      setting_names s = {info, {0}};
+      char list[512], what[96];
+      snprintf(what, sizeof what, "parameter of %s", name);
+      if (cli_suggest(key, setting_name_at, &s, list, sizeof list) > 0)
+        cli_error(command, "unknown %s '%s'; did you mean: %s?", what, key, list);
+      else
+        model_error(command, name, settings->items[k], gm_model_errmsg(model));
+    } else {
+      model_error(command, name, settings->items[k], gm_model_errmsg(model));
+    }
+    gm_model_free(model);
+    return CLI_EXIT_USAGE;
+  }
+  if (gm_model_build(model) != GM_OK) {
+    model_error(command, name, NULL, gm_model_errmsg(model));
+    gm_model_free(model);
+    return CLI_EXIT_USAGE;
+  }
+  *out = model;
+  return CLI_EXIT_OK;
+}
+
+size_t cli_find_invariant(const gm_problem *problem, const char *part) {
+  for (size_t k = 0; k < problem->n_invariants; ++k)
+    if (strstr(problem->invariants[k].name, part) != NULL) return k;
+  return (size_t)-1;
+}

@@ -1,0 +1,104 @@
+/* One integration with a monitor and an optional CSV writer, shared by run and demo. */
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cli/cli.h"
+#include "geomint/io.h"
+
+static double now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void cli_sim_result_clear(cli_sim_result *r) {
+  free(r->y_final);
+  gm_monitor_free(r->monitor);
+  memset(r, 0, sizeof *r);
+}
+
+/* Create everything the run needs; returns an exit status. */
+static int prepare(const char *command, const cli_sim_config *c, const double *y0, double t0,
+                   gm_integrator **it, gm_csv_writer **csv, cli_sim_result *r) {
+  const gm_problem *pb = gm_model_problem(c->model);
+  const char *problem = gm_model_info_of(c->model)->name;
+  gm_error err = {{0}};
+  gm_status st = gm_integrator_create(c->method, pb, it, &err);
+  if (st != GM_OK) {
+    cli_error(command, "%s with %s: %s", problem, c->method->name,
+              err.message[0] ? err.message : gm_strerror(st));
+    return st == GM_ENOMEM ? CLI_EXIT_FAILURE : CLI_EXIT_USAGE;
+  }
+  st = gm_integrator_set_state(*it, t0, y0);
+  if (st != GM_OK) {
+    cli_error(command, "%s: initial state: %s", problem, gm_integrator_errmsg(*it));
+    return CLI_EXIT_USAGE;
+  }
+  if (c->compensated) gm_integrator_set_compensated(*it, 1);
+  if (gm_monitor_create(pb, y0, &r->monitor) != GM_OK ||
+      gm_integrator_add_observer(*it, gm_monitor_observe, r->monitor, c->monitor_every) !=
+          GM_OK) {
+    cli_error(command, "cannot set up the energy monitor: %s", gm_integrator_errmsg(*it));
+    return CLI_EXIT_FAILURE;
+  }
+  if (c->csv_path != NULL) {
+    st = gm_csv_writer_create(c->csv_path, pb, y0, csv, &err);
+    if (st != GM_OK) {
+      cli_error(command, "%s", err.message);
+      return CLI_EXIT_FAILURE;
+    }
+    r->energy_column = gm_csv_writer_column(*csv, "rel_energy_error");
+    if (gm_integrator_add_observer(*it, gm_csv_writer_observe, *csv, c->csv_every) != GM_OK) {
+      cli_error(command, "cannot add the CSV writer: %s", gm_integrator_errmsg(*it));
+      return CLI_EXIT_FAILURE;
+    }
+  }
+  return CLI_EXIT_OK;
+}
+
+int cli_simulate(const char *command, const cli_sim_config *c, cli_sim_result *r) {
+  memset(r, 0, sizeof *r);
+  r->energy_column = (size_t)-1;
+  size_t n = gm_model_state_size(c->model);
+  r->n_state = n;
+  r->y_final = calloc(n, sizeof *r->y_final);
+  double *y0 = calloc(n, sizeof *y0);
+  if (r->y_final == NULL || y0 == NULL) {
+    free(y0);
+    cli_error(command, "out of memory");
+    return CLI_EXIT_FAILURE;
+  }
+  gm_model_initial_state(c->model, &r->t0, y0);
+  if (c->n_steps == 0 && !(c->t_end > r->t0)) {
+    free(y0);
+    cli_error(command, "--t-end %g is not after the initial time %g", c->t_end, r->t0);
+    return CLI_EXIT_USAGE;
+  }
+
+  gm_integrator *it = NULL;
+  gm_csv_writer *csv = NULL;
+  int status = prepare(command, c, y0, r->t0, &it, &csv, r);
+  free(y0);
+  if (status == CLI_EXIT_OK) {
+    double start = now_s();
+    gm_status st = c->n_steps > 0 ? gm_integrator_run(it, c->n_steps, c->dt)
+                                   : gm_integrator_integrate(it, c->t_end, c->dt);
+    r->wall_s = now_s() - start;
+    r->stats = gm_integrator_stats(it);
+    r->t_final = gm_integrator_time(it);
+    memcpy(r->y_final, gm_integrator_state(it), n * sizeof *r->y_final);
+    if (st != GM_OK) {
+      const char *why = gm_integrator_errmsg(it);
+      if (csv != NULL && gm_csv_writer_errmsg(csv)[0] != '\0') why = gm_csv_writer_errmsg(csv);
+      cli_error(command, "%s with %s failed at t = %.17g after %zu steps: %s",
+                gm_model_info_of(c->model)->name, c->method->name, r->t_final,
+                r->stats.steps, why[0] ? why : gm_strerror(st));
+      status = CLI_EXIT_FAILURE;
+    }
+  }
+  r->csv_rows = gm_csv_writer_rows(csv);
+  gm_csv_writer_free(csv);
+  gm_integrator_free(it);
+  return status;
+}
