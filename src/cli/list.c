@@ -7,11 +7,12 @@
 #include "cli/cli.h"
 
 static const char usage[] =
-    "usage: geomint list methods [--json]\n"
-    "       geomint list problems [--json]\n\n"
+    "usage: geomint list methods [--json | --markdown]\n"
+    "       geomint list problems [--json | --markdown]\n\n"
     "List the integration methods or the built-in problems.\n\n"
     "options:\n"
-    "  --json   print a JSON array (one object per row) instead of a table\n";
+    "  --json       print a JSON array (one object per row) instead of a table\n"
+    "  --markdown   print a Markdown table with the sources (the README and docs use it)\n";
 
 static const gm_problem_kind kinds[] = {GM_PROBLEM_FIRST_ORDER, GM_PROBLEM_HAMILTONIAN,
                                         GM_PROBLEM_SEPARABLE};
@@ -149,6 +150,39 @@ static int problems_table(void) {
   return CLI_EXIT_OK;
 }
 
+/* Markdown tables: flag lists separated by ", " so that they wrap. */
+static int methods_markdown(void) {
+  char flags[256], accepts[128];
+  puts("| method | family | order | stages | properties | accepts | source |");
+  puts("|---|---|---:|---:|---|---|---|");
+  for (size_t i = 0; i < gm_method_count(); ++i) {
+    const gm_method *m = gm_method_at(i);
+    flags[0] = accepts[0] = '\0';
+    for (size_t bit = 0; bit < GM_N_METHOD_FLAGS; ++bit)
+      if (m->flags & (1u << bit)) join(flags, sizeof flags, ", ", gm_method_flag_name(bit));
+    for (size_t k = 0; k < N_KINDS; ++k)
+      if (m->accepts & (unsigned)kinds[k])
+        join(accepts, sizeof accepts, ", ", gm_problem_kind_name(kinds[k]));
+    printf("| `%s` | %s | %d | %zu | %s | %s | %s |\n", m->name, gm_method_family_name(m->family),
+           m->order, m->n_stages, flags, accepts, m->reference != NULL ? m->reference : "");
+  }
+  return CLI_EXIT_OK;
+}
+
+static int problems_markdown(void) {
+  char params[512], inv[512];
+  puts("| problem | kind | dim | parameters | invariants | description |");
+  puts("|---|---|---:|---|---|---|");
+  for (size_t i = 0; i < gm_model_count(); ++i) {
+    const gm_model_info *p = gm_model_info_at(i);
+    problem_params(p, params, sizeof params);
+    problem_invariants(p, inv, sizeof inv);
+    printf("| `%s` | %s | %zu | %s | %s | %s |\n", p->name, gm_problem_kind_name(p->kind),
+           p->default_dim, params, inv, p->description != NULL ? p->description : "");
+  }
+  return CLI_EXIT_OK;
+}
+
 static const char *what_name_at(const void *ctx, size_t i) {
   (void)ctx;
   static const char *const names[] = {"methods", "problems"};
@@ -156,11 +190,12 @@ static const char *what_name_at(const void *ctx, size_t i) {
 }
 
 static int list_main(int argc, char **argv) {
-  int json = 0;
-  cli_option options[] = {{"--json", CLI_ARG_FLAG, &json, 0}};
+  int json = 0, markdown = 0;
+  cli_option options[] = {{"--json", CLI_ARG_FLAG, &json, 0},
+                          {"--markdown", CLI_ARG_FLAG, &markdown, 0}};
   const char *what[1];
   size_t n_what = 0;
-  int status = cli_parse("list", argc, argv, options, 1, what, 1, &n_what);
+  int status = cli_parse("list", argc, argv, options, 2, what, 1, &n_what);
   if (status == CLI_HELP) {
     fputs(usage, stdout);
     return CLI_EXIT_OK;
@@ -170,8 +205,14 @@ static int list_main(int argc, char **argv) {
     cli_error("list", "what to list? 'methods' or 'problems'");
     return CLI_EXIT_USAGE;
   }
-  if (strcmp(what[0], "methods") == 0) return json ? methods_json() : methods_table();
-  if (strcmp(what[0], "problems") == 0) return json ? problems_json() : problems_table();
+  if (json && markdown) {
+    cli_error("list", "--json and --markdown exclude each other");
+    return CLI_EXIT_USAGE;
+  }
+  if (strcmp(what[0], "methods") == 0)
+    return json ? methods_json() : markdown ? methods_markdown() : methods_table();
+  if (strcmp(what[0], "problems") == 0)
+    return json ? problems_json() : markdown ? problems_markdown() : problems_table();
   cli_unknown("list", "list", what[0], what_name_at, NULL, "use 'methods' or 'problems'");
   return CLI_EXIT_USAGE;
 }

@@ -106,6 +106,6 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
 static const gm_param_info params[] = {{"e", 0.6, "eccentricity, 0 <= e < 1"}};
 
 const gm_model_def gm_model_kepler = {
-    {"kepler", "Kepler two-body problem H = |p|^2/2 - 1/|q|, started at pericentre, period 2 pi",
+    {"kepler", "Kepler two-body problem H = p^2/2 - 1/r, started at pericentre, period 2 pi",
      GM_PROBLEM_SEPARABLE, 2, 1, params, 2, invariant_names, 1},
     sizeof(kepler), NULL, setup, NULL};
