@@ -6,6 +6,10 @@
 #include "geomint/ode.h"
 #include "geomint/methods.h"
 #include "geomint/problems.h"
+#include "geomint/io.h"
+#include "geomint/sparse.h"
+#include "geomint/dec.h"
+#include "geomint/mesh.h"
 
 #define GM_VERSION_MAJOR 0
 #define GM_VERSION_MINOR 1

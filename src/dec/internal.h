@@ -1,0 +1,54 @@
+/* Private declarations of the dec module; never installed. */
+#ifndef GM_DEC_INTERNAL_H
+#define GM_DEC_INTERNAL_H
+
+#include "core/internal.h"
+#include "geomint/dec.h"
+
+struct gm_complex {
+  size_t n, N, n_vertices;
+  double *x;
+  size_t count[GM_DEC_MAX_DIM + 1];
+  size_t *simplices[GM_DEC_MAX_DIM + 1]; /* sorted tuples; simplices[0] = 0..n_vertices-1 */
+  size_t *faces[GM_DEC_MAX_DIM + 1];     /* faces[k], k >= 1: (k+1) per k-simplex */
+  signed char *orient;                   /* per top simplex */
+  size_t n_reoriented;
+  gm_csr *d[GM_DEC_MAX_DIM];
+  size_t *cofaces; /* 2 per (n−1)-face */
+  unsigned char *boundary[GM_DEC_MAX_DIM + 1];
+  size_t n_boundary[GM_DEC_MAX_DIM + 1];
+};
+
+struct gm_geometry {
+  const gm_complex *cx;
+  gm_geometry_options opt;
+  double *centers[GM_DEC_MAX_DIM + 1];
+  double *primal[GM_DEC_MAX_DIM + 1];
+  double *dual[GM_DEC_MAX_DIM + 1];
+  double *bdual[GM_DEC_MAX_DIM + 1];
+  double *star[GM_DEC_MAX_DIM + 1];
+  size_t negative[GM_DEC_MAX_DIM + 1];
+  size_t inverted;
+};
+
+/* Local geometry of one simplex with m+1 <= 4 vertices p (N coordinates each, N <= 3 uses the
+ * stable cross-product formulas). */
+#define GM_LOCAL_MAX 4
+/* Signed dual pieces |⋆s ∩ S| for every vertex subset s of the simplex S = [p_0..p_m]
+ * (bitmask index; entry 0 unused): circumcentric (heights) or barycentric (Gram volumes). */
+void gm_local_dual_pieces(size_t N, size_t m, const double *p, gm_dual_kind kind, double *pieces);
+/* Circumcenter c and barycentric coordinates (m+1 values) of [p_0..p_m]; returns the m-volume. */
+double gm_local_circumcenter(size_t N, size_t m, const double *p, double *c, double *bary);
+/* m-volume of [p_0..p_m] (unsigned). */
+double gm_local_volume(size_t N, size_t m, const double *p);
+/* Gradients of the barycentric coordinates (m+1 vectors of N values) of [p_0..p_m]. */
+int gm_local_barycentric_gradients(size_t N, size_t m, const double *p, double *grad);
+/* Gather the coordinates of k+1 vertices of cx into p. */
+void gm_gather_points(const gm_complex *cx, size_t k, const size_t *vertices, double *p);
+/* Index of the local face (bitmask over the top's vertices) within gm_geometry_dual_pieces'
+ * ordering, and the number of faces of each size. */
+size_t gm_binomial(size_t n, size_t k);
+/* Orientation sign of simplex i of dimension k: +1 for k < n, orient[i] for k == n. */
+int gm_simplex_sign(const gm_complex *cx, size_t k, size_t i);
+
+#endif
