@@ -13,10 +13,14 @@
 extern "C" {
 #endif
 
+/* A parameter is a number (gm_model_set) or a text such as a file name (gm_model_set_text). */
+typedef enum gm_param_type { GM_PARAM_NUMBER = 0, GM_PARAM_TEXT = 1 } gm_param_type;
+
 typedef struct gm_param_info {
   const char *name;
-  double default_value;
+  double default_value;          /* numbers; unused (0) for text parameters, which are unset */
   const char *description;
+  gm_param_type type;
 } gm_param_info;
 
 typedef struct gm_model_info {
@@ -41,8 +45,11 @@ typedef struct gm_model gm_model;
 gm_status gm_model_create(const char *name, gm_model **out);
 void gm_model_free(gm_model *model);
 /* Set a parameter by name, or an initial value: q1..qd, p1..pd (Hamiltonian kinds) or y1..yn.
- * Unknown name or non-finite value → GM_EINVAL with a message. */
+ * Unknown name, a text parameter or a non-finite value → GM_EINVAL with a message. */
 gm_status gm_model_set(gm_model *model, const char *name, double value);
+/* Set a text parameter (type GM_PARAM_TEXT, e.g. the file n-body reads its bodies from); value
+ * is copied, "" unsets it. Unknown name or a number parameter → GM_EINVAL with a message. */
+gm_status gm_model_set_text(gm_model *model, const char *name, const char *value);
 /* Check the parameters and build the problem and initial state. Must be called after the last
  * gm_model_set and before the accessors below. */
 gm_status gm_model_build(gm_model *model);
@@ -51,7 +58,7 @@ size_t gm_model_state_size(const gm_model *model);
 /* Initial time and state (y0: gm_model_state_size entries, written). */
 void gm_model_initial_state(const gm_model *model, double *t0, double *y0);
 const gm_model_info *gm_model_info_of(const gm_model *model);
-double gm_model_param(const gm_model *model, const char *name); /* NaN when unknown */
+double gm_model_param(const gm_model *model, const char *name); /* NaN when unknown or text */
 const char *gm_model_errmsg(const gm_model *model);
 
 #ifdef __cplusplus

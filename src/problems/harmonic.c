@@ -51,6 +51,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   pb->kinetic = gm_free_kinetic;
   pb->kinetic_gradient = gm_free_kinetic_gradient;
   pb->kinetic_hessian = gm_free_kinetic_hessian;
+  pb->kinetic_is_quadratic = 1;
   pb->potential = potential;
   pb->potential_gradient = potential_gradient;
   pb->potential_hessian = potential_hessian;
@@ -60,9 +61,9 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   return GM_OK;
 }
 
-static const gm_param_info params[] = {{"omega", 1.0, "angular frequency"}};
+static const gm_param_info params[] = {{"omega", 1.0, "angular frequency", GM_PARAM_NUMBER}};
 
 const gm_model_def gm_model_harmonic = {
     {"harmonic", "harmonic oscillator H = p^2/2 + omega^2 q^2/2, q = 1, p = 0",
      GM_PROBLEM_SEPARABLE, 1, 1, params, 0, NULL, 1},
-    sizeof(harmonic), NULL, setup, initial_changed};
+    sizeof(harmonic), NULL, setup, initial_changed, NULL};

@@ -38,6 +38,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   pb->kinetic = gm_free_kinetic;
   pb->kinetic_gradient = gm_free_kinetic_gradient;
   pb->kinetic_hessian = gm_free_kinetic_hessian;
+  pb->kinetic_is_quadratic = 1;
   pb->potential = potential;
   pb->potential_gradient = potential_gradient;
   pb->potential_hessian = potential_hessian;
@@ -48,9 +49,10 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   return GM_OK;
 }
 
-static const gm_param_info params[] = {{"lambda", 1.0, "strength of the cubic coupling"}};
+static const gm_param_info params[] = {
+    {"lambda", 1.0, "strength of the cubic coupling", GM_PARAM_NUMBER}};
 
 const gm_model_def gm_model_henon_heiles = {
     {"henon-heiles", "Henon-Heiles potential, q = (0, 0.1), p = (0.5, 0), energy 0.1297",
      GM_PROBLEM_SEPARABLE, 2, 1, params, 0, NULL, 0},
-    sizeof(henon_heiles), NULL, setup, NULL};
+    sizeof(henon_heiles), NULL, setup, NULL, NULL};

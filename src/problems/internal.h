@@ -9,8 +9,12 @@
 typedef struct gm_model_def {
   gm_model_info info;
   size_t ctx_size;  /* bytes of the problem context, allocated and zeroed by model.c */
-  /* Optional: degrees of freedom for the given parameters (info.default_dim when NULL). */
-  gm_status (*dimension)(const double *params, size_t *dim, char *errmsg, size_t cap);
+  /* Optional: work out the degrees of freedom for the parameters (info.default_dim when NULL).
+   * params are in info.params order; texts likewise, NULL where a text parameter is unset (and
+   * for number parameters). What it reads or draws (a file of bodies, a random sample) may be
+   * kept in ctx for setup, to be freed by release. */
+  gm_status (*prepare)(void *ctx, const double *params, const char *const *texts, size_t *dim,
+                       char *errmsg, size_t cap);
   /* Check the parameters (in info.params order), fill ctx, the callbacks of problem (kind,
    * dim and ctx are set already) and the default initial state. */
   gm_status (*setup)(void *ctx, const double *params, gm_problem *problem, double *t0,
@@ -18,6 +22,9 @@ typedef struct gm_model_def {
   /* Optional: the initial state was changed by the user (q1=..., p1=...); return 0 when the
    * problem's exact solution no longer applies. */
   int (*initial_changed)(void *ctx, const double *y0);
+  /* Optional: free what prepare or setup allocated inside ctx (not ctx itself). Called on a
+   * zeroed ctx too, when prepare failed before allocating. */
+  void (*release)(void *ctx);
 } gm_model_def;
 
 /* Free-particle kinetic energy T(p) = ½|p|² with unit masses, shared by several problems.
@@ -26,10 +33,32 @@ double gm_free_kinetic(void *ctx, const double *p);
 int gm_free_kinetic_gradient(void *ctx, const double *p, double *out);
 int gm_free_kinetic_hessian(void *ctx, const double *p, double *hessian);
 
+/* Newtonian gravity of point masses in 3-D (gravity.c), shared by outer-solar-system and n-body:
+ *   H = Σ_i |p_i|²/(2 m_i) − G Σ_{i<j} m_i m_j / sqrt(|q_i − q_j|² + ε²),
+ * q and p stored body by body (x1 y1 z1 x2 ...), p_i = m_i v_i. The problem's context must
+ * begin with a gm_gravity. A collision (r = 0 with ε = 0) is a failed evaluation. */
+typedef struct gm_gravity {
+  size_t dim;           /* 3 n_bodies */
+  size_t n_bodies;
+  double G;             /* gravitational constant */
+  double softening2;    /* ε² >= 0 */
+  const double *mass;   /* n_bodies masses > 0, owned by the problem's context */
+} gm_gravity;
+
+/* Set the gravity callbacks of pb and its six invariants: the components of the total linear
+ * momentum Σ p_i and of the angular momentum Σ q_i × p_i (Noether: translations, rotations). */
+void gm_gravity_setup(gm_problem *pb);
+#define GM_GRAVITY_N_INVARIANTS 6
+extern const char *const gm_gravity_invariant_names[GM_GRAVITY_N_INVARIANTS];
+
 extern const gm_model_def gm_model_harmonic;
 extern const gm_model_def gm_model_pendulum;
 extern const gm_model_def gm_model_kepler;
 extern const gm_model_def gm_model_henon_heiles;
 extern const gm_model_def gm_model_lotka_volterra;
+extern const gm_model_def gm_model_outer_solar_system;
+extern const gm_model_def gm_model_n_body;
+extern const gm_model_def gm_model_point_vortices;
+extern const gm_model_def gm_model_fpu;
 
 #endif

@@ -90,6 +90,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   pb->kinetic = gm_free_kinetic;
   pb->kinetic_gradient = gm_free_kinetic_gradient;
   pb->kinetic_hessian = gm_free_kinetic_hessian;
+  pb->kinetic_is_quadratic = 1;
   pb->potential = potential;
   pb->potential_gradient = potential_gradient;
   pb->potential_hessian = potential_hessian;
@@ -103,9 +104,9 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   return GM_OK;
 }
 
-static const gm_param_info params[] = {{"e", 0.6, "eccentricity, 0 <= e < 1"}};
+static const gm_param_info params[] = {{"e", 0.6, "eccentricity, 0 <= e < 1", GM_PARAM_NUMBER}};
 
 const gm_model_def gm_model_kepler = {
     {"kepler", "Kepler two-body problem H = p^2/2 - 1/r, started at pericentre, period 2 pi",
      GM_PROBLEM_SEPARABLE, 2, 1, params, 2, invariant_names, 1},
-    sizeof(kepler), NULL, setup, NULL};
+    sizeof(kepler), NULL, setup, NULL, NULL};

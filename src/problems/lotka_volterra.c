@@ -51,4 +51,4 @@ const gm_model_def gm_model_lotka_volterra = {
     {"lotka-volterra",
      "predator-prey u' = u(v - 2), v' = v(1 - u), y = (3, 3); invariant ln u - u + 2 ln v - v",
      GM_PROBLEM_FIRST_ORDER, 2, 0, NULL, 1, invariant_names, 0},
-    sizeof(size_t), NULL, setup, NULL};
+    sizeof(size_t), NULL, setup, NULL, NULL};

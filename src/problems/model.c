@@ -13,6 +13,10 @@ static const gm_model_def *const defs[] = {
     &gm_model_kepler,
     &gm_model_henon_heiles,
     &gm_model_lotka_volterra,
+    &gm_model_outer_solar_system,
+    &gm_model_n_body,
+    &gm_model_point_vortices,
+    &gm_model_fpu,
 };
 static const size_t n_defs = sizeof defs / sizeof defs[0];
 
@@ -43,6 +47,7 @@ typedef struct {
 struct gm_model {
   const gm_model_def *def;
   double *params;
+  char **texts;  /* owned copies, n_params entries; NULL where unset or a number parameter */
   initial_override *overrides;
   size_t n_overrides;
   int built;
@@ -62,7 +67,10 @@ gm_status gm_model_create(const char *name, gm_model **out) {
   if (m == NULL) return GM_ENOMEM;
   m->def = def;
   m->params = calloc(def->info.n_params ? def->info.n_params : 1, sizeof(double));
-  if (m->params == NULL) {
+  m->texts = calloc(def->info.n_params ? def->info.n_params : 1, sizeof(char *));
+  if (m->params == NULL || m->texts == NULL) {
+    free(m->params);
+    free(m->texts);
     free(m);
     return GM_ENOMEM;
   }
@@ -71,11 +79,20 @@ gm_status gm_model_create(const char *name, gm_model **out) {
   return GM_OK;
 }
 
+/* Free the problem context and what the definition allocated inside it. */
+static void release_ctx(gm_model *m) {
+  if (m->ctx != NULL && m->def->release != NULL) m->def->release(m->ctx);
+  free(m->ctx);
+  m->ctx = NULL;
+}
+
 void gm_model_free(gm_model *m) {
   if (m == NULL) return;
+  for (size_t i = 0; i < m->def->info.n_params; ++i) free(m->texts[i]);
+  free(m->texts);
   free(m->params);
   free(m->overrides);
-  free(m->ctx);
+  release_ctx(m);
   free(m->y0);
   free(m);
 }
@@ -92,6 +109,21 @@ static int parse_initial_name(const char *name, char *prefix, size_t *index) {
   return 1;
 }
 
+/* "kepler has no parameter 'mass' (parameters: e, q1.., p1..)" */
+static gm_status unknown_parameter(gm_model *m, const char *name) {
+  const gm_model_info *info = &m->def->info;
+  int hamiltonian = info->kind != GM_PROBLEM_FIRST_ORDER;
+  char known[160] = "";
+  size_t len = 0;
+  for (size_t i = 0; i < info->n_params && len < sizeof known; ++i) {
+    int w = snprintf(known + len, sizeof known - len, "%s, ", info->params[i].name);
+    if (w > 0) len += (size_t)w;
+  }
+  return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                 "%s has no parameter '%s' (parameters: %s%s)", info->name, name, known,
+                 hamiltonian ? "q1.., p1.." : "y1..");
+}
+
 gm_status gm_model_set(gm_model *m, const char *name, double value) {
   if (m == NULL || name == NULL) return GM_EINVAL;
   const gm_model_info *info = &m->def->info;
@@ -100,6 +132,10 @@ gm_status gm_model_set(gm_model *m, const char *name, double value) {
                    info->name, name, value);
   for (size_t i = 0; i < info->n_params; ++i)
     if (strcmp(info->params[i].name, name) == 0) {
+      if (info->params[i].type == GM_PARAM_TEXT)
+        return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                       "%s: %s is a text parameter (%s), not a number", info->name, name,
+                       info->params[i].description);
       m->params[i] = value;
       m->built = 0;
       return GM_OK;
@@ -115,35 +151,55 @@ gm_status gm_model_set(gm_model *m, const char *name, double value) {
     m->built = 0;
     return GM_OK;
   }
-  char known[160] = "";
-  size_t len = 0;
-  for (size_t i = 0; i < info->n_params && len < sizeof known; ++i) {
-    int w = snprintf(known + len, sizeof known - len, "%s, ", info->params[i].name);
-    if (w > 0) len += (size_t)w;
+  return unknown_parameter(m, name);
+}
+
+gm_status gm_model_set_text(gm_model *m, const char *name, const char *value) {
+  if (m == NULL || name == NULL || value == NULL) return GM_EINVAL;
+  const gm_model_info *info = &m->def->info;
+  for (size_t i = 0; i < info->n_params; ++i) {
+    if (strcmp(info->params[i].name, name) != 0) continue;
+    if (info->params[i].type != GM_PARAM_TEXT)
+      return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                     "%s: %s is a number (%s), got the text '%s'", info->name, name,
+                     info->params[i].description, value);
+    char *copy = NULL;
+    if (value[0] != '\0') {
+      size_t len = strlen(value);
+      copy = malloc(len + 1);
+      if (copy == NULL) return GM_ENOMEM;
+      memcpy(copy, value, len + 1);
+    }
+    free(m->texts[i]);
+    m->texts[i] = copy;
+    m->built = 0;
+    return GM_OK;
   }
-  return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
-                 "%s has no parameter '%s' (parameters: %s%s)", info->name, name, known,
-                 hamiltonian ? "q1.., p1.." : "y1..");
+  return unknown_parameter(m, name);
 }
 
 gm_status gm_model_build(gm_model *m) {
   if (m == NULL) return GM_EINVAL;
   const gm_model_def *def = m->def;
+  m->built = 0;
+  release_ctx(m);
+  free(m->y0);
+  m->y0 = NULL;
+  m->ctx = calloc(1, def->ctx_size ? def->ctx_size : 1);
+  if (m->ctx == NULL) return gm_fail(m->errmsg, sizeof m->errmsg, GM_ENOMEM, "out of memory");
   size_t dim = def->info.default_dim;
   gm_status st = GM_OK;
-  if (def->dimension != NULL) st = def->dimension(m->params, &dim, m->errmsg, sizeof m->errmsg);
+  if (def->prepare != NULL)
+    st = def->prepare(m->ctx, m->params, (const char *const *)m->texts, &dim, m->errmsg,
+                      sizeof m->errmsg);
   if (st != GM_OK) return st;
-  free(m->ctx);
-  free(m->y0);
-  m->built = 0;
-  m->ctx = calloc(1, def->ctx_size ? def->ctx_size : 1);
   memset(&m->problem, 0, sizeof m->problem);
   m->problem.kind = def->info.kind;
   m->problem.dim = dim;
   m->problem.ctx = m->ctx;
   const size_t n = gm_problem_state_size(&m->problem);
   m->y0 = calloc(n, sizeof(double));
-  if (m->ctx == NULL || m->y0 == NULL)
+  if (m->y0 == NULL)
     return gm_fail(m->errmsg, sizeof m->errmsg, GM_ENOMEM, "out of memory");
   m->t0 = 0.0;
   st = def->setup(m->ctx, m->params, &m->problem, &m->t0, m->y0, m->errmsg, sizeof m->errmsg);
@@ -199,7 +255,8 @@ const gm_model_info *gm_model_info_of(const gm_model *m) { return m ? &m->def->i
 double gm_model_param(const gm_model *m, const char *name) {
   if (m == NULL || name == NULL) return NAN;
   for (size_t i = 0; i < m->def->info.n_params; ++i)
-    if (strcmp(m->def->info.params[i].name, name) == 0) return m->params[i];
+    if (strcmp(m->def->info.params[i].name, name) == 0)
+      return m->def->info.params[i].type == GM_PARAM_TEXT ? NAN : m->params[i];
   return NAN;
 }
 
