@@ -14,10 +14,12 @@ extern "C" {
 typedef enum gm_method_family {
   GM_FAMILY_EXPLICIT_RK = 1, /* explicit Runge–Kutta (Butcher tableau), first-order problems */
   GM_FAMILY_SPLITTING,       /* drift–kick compositions for separable H = T(p) + V(q) */
-  GM_FAMILY_IMPLICIT_RK      /* implicit Runge–Kutta solved by Newton */
+  GM_FAMILY_IMPLICIT_RK,     /* implicit Runge–Kutta solved by Newton or fixed-point iteration */
+  GM_FAMILY_COMPOSITION,     /* Φ_{γ_s h} ∘ … ∘ Φ_{γ_1 h} of a symmetric basic method Φ */
+  GM_FAMILY_PARTITIONED_RK   /* partitioned Runge–Kutta: one tableau for q, one for p */
 } gm_method_family;
 
-/* "explicit-rk", "splitting", "implicit-rk" */
+/* "explicit-rk", "splitting", "implicit-rk", "composition", "partitioned-rk" */
 const char *gm_method_family_name(gm_method_family family);
 
 enum {
@@ -32,21 +34,45 @@ enum {
 /* Name of the flag with index bit (0 ≤ bit < GM_N_METHOD_FLAGS): "symplectic", ... */
 const char *gm_method_flag_name(size_t bit);
 
-typedef struct gm_method {
-  const char *name;           /* lowercase-with-hyphens, unique */
-  gm_method_family family;
-  int order;                  /* classical order */
+/* The coefficients of a method, literal or computed (gm_method_tableau). */
+typedef struct gm_tableau {
   size_t n_stages;
-  unsigned flags;             /* GM_SYMPLECTIC | ... */
-  unsigned accepts;           /* bitwise or of gm_problem_kind */
   /* Runge–Kutta: a is n_stages×n_stages row-major, b and c have n_stages entries.
    * Splitting: one step is, for i = 0..n_stages-1,
    *   drift  q += a[i]·h·∇T(p),  then  kick  p -= b[i]·h·∇V(q)
-   * (c unused; zero coefficients are skipped). */
+   * (c unused; zero coefficients are skipped).
+   * Partitioned RK: (a, b, c) for q, (a_bar, b_bar) for p (same c). */
+  double *a, *b, *c;
+  double *a_bar, *b_bar;
+  /* Composition: the fractions γ_1..γ_s of the step given to the basic method. */
+  double *gamma;
+} gm_tableau;
+
+struct gm_method;
+/* Fill a tableau whose arrays are allocated for the method's family and stage count. */
+typedef gm_status (*gm_tableau_fn)(const struct gm_method *method, gm_tableau *tableau);
+
+typedef struct gm_method {
+  const char *name;           /* lowercase-with-hyphens, unique */
+  gm_method_family family;
+  int order;                  /* classical order (of the composition: with an order-2 basic) */
+  size_t n_stages;            /* stages; splitting: drift–kick pairs; composition: basic steps */
+  unsigned flags;             /* GM_SYMPLECTIC | ... */
+  unsigned accepts;           /* bitwise or of gm_problem_kind */
+  /* Literal coefficients, laid out as in gm_tableau (NULL where unused) ... */
   const double *a, *b, *c;
+  const double *gamma;
+  /* ... or computed from closed forms when the integrator is created (Gauss nodes). */
+  gm_tableau_fn compute;
+  const char *basic;          /* composition: the default basic method ("verlet") */
   const char *description;
   const char *reference;      /* paper and equation the coefficients come from */
 } gm_method;
+
+/* The method's coefficients (literal ones copied, computed ones computed); free with
+ * gm_tableau_free. */
+gm_status gm_method_tableau(const gm_method *method, gm_tableau **out);
+void gm_tableau_free(gm_tableau *tableau);
 
 size_t gm_method_count(void);
 const gm_method *gm_method_at(size_t index);   /* NULL past the end */

@@ -59,6 +59,10 @@ typedef struct gm_problem {
   int (*kinetic_hessian)(void *ctx, const double *p, double *hessian);
   int (*potential_hessian)(void *ctx, const double *q, double *hessian);
 
+  /* separable: set when T(p) = ½ pᵀM⁻¹p with a constant M, so ∇T is linear (it lets Gauss
+   * methods iterate on positions only, GM_SOLVER_FIXED_POINT_POSITIONS) */
+  int kinetic_is_quadratic;
+
   /* optional, every kind */
   size_t n_invariants;
   const gm_invariant *invariants;                 /* borrowed, n_invariants entries */
@@ -84,8 +88,25 @@ typedef struct gm_stats {
   size_t jacobian_evals;     /* Jacobian or Hessian evaluations (user or finite-difference) */
   size_t fd_jacobians;       /* of those, finite-difference ones: a Hessian was missing */
   size_t newton_iterations;  /* over all implicit solves */
-  size_t newton_failures;    /* solves that did not converge */
+  size_t fixed_point_iterations;
+  size_t newton_failures;    /* solves that did not converge (Newton or fixed point) */
 } gm_stats;
+
+/* How implicit methods solve their stage equations. */
+typedef enum gm_solver {
+  GM_SOLVER_DEFAULT = 0,            /* simplified Newton */
+  GM_SOLVER_NEWTON,                 /* full Newton: Jacobians at every stage and iteration */
+  GM_SOLVER_SIMPLIFIED_NEWTON,      /* one Jacobian at y_n and one LU of I − hA⊗J per step */
+  GM_SOLVER_FIXED_POINT,            /* fixed-point iteration, starting from the previous step's
+                                       collocation polynomial */
+  GM_SOLVER_FIXED_POINT_POSITIONS   /* q'' = f(q): fixed-point iteration on the stage positions
+                                       only (separable problems with quadratic T) */
+} gm_solver;
+
+/* "default", "newton", "simplified-newton", "fixed-point", "fixed-point-positions" */
+const char *gm_solver_name(gm_solver solver);
+/* The solver of that name; GM_ENOTFOUND when there is none. */
+gm_status gm_solver_find(const char *name, gm_solver *out);
 
 /* An observer sees the synchronized state after the steps it is called for (read-only);
  * returning non-zero stops the run with GM_ECALLBACK. */
@@ -100,6 +121,23 @@ void gm_integrator_free(gm_integrator *it);
 
 /* Set time and state (y copied, length gm_problem_state_size). NaN or infinite → GM_EDOMAIN. */
 gm_status gm_integrator_set_state(gm_integrator *it, double t, const double *y);
+/* The solver of the stage equations of an implicit method (also inside a composition).
+ * GM_EUNSUPPORTED for explicit methods, or for GM_SOLVER_FIXED_POINT_POSITIONS when the
+ * method is not a Runge–Kutta method or the problem is not separable with quadratic T. */
+gm_status gm_integrator_set_solver(gm_integrator *it, gm_solver solver);
+/* A method with its choices: the basic method of a composition (NULL: the row's default; it
+ * must be symmetric of order 2: verlet, midpoint, lobatto-iiia-iiib-2, ...), the solver of
+ * implicit stages, and compensated summation. */
+typedef struct gm_scheme {
+  const struct gm_method *method;
+  const struct gm_method *basic;
+  gm_solver solver;
+  int compensated;
+} gm_scheme;
+
+/* gm_integrator_create, then the scheme's basic method, solver and compensation. */
+gm_status gm_integrator_create_scheme(const gm_scheme *scheme, const gm_problem *problem,
+                                      gm_integrator **out, gm_error *err);
 /* Compensated (Kahan) summation of the state update y + Δy (GNI §VIII.5). Off by default. */
 gm_status gm_integrator_set_compensated(gm_integrator *it, int on);
 /* Call fn(ctx, ...) at the current state now-or-at-start, every `every` steps, and after the
@@ -154,14 +192,16 @@ typedef struct gm_order_result {
   const struct gm_method *reference;   /* the reference method, NULL when exact */
 } gm_order_result;
 
-/* Integrate from (t0, y0) to t_end with steps dt0, dt0/2, ... (n_levels ≤ GM_ORDER_MAX_LEVELS)
- * and compare with the exact solution if the problem has one, else with a run of `reference`
- * (borrowed; NULL picks the highest-order explicit method the problem accepts) at a step 64
- * times smaller than the finest. */
-gm_status gm_order_measure(const struct gm_method *method, const gm_problem *problem, double t0,
+/* Integrate the scheme from (t0, y0) to t_end with steps dt0, dt0/r, dt0/r², ... (n_levels ≤
+ * GM_ORDER_MAX_LEVELS; refinement r > 1, 2 is usual, less for very high orders, whose error
+ * would otherwise fall from truncation to round-off within one refinement) and compare with the
+ * exact solution if the problem has one, else with a run of `reference` (borrowed; NULL picks
+ * the highest-order explicit method the problem accepts) at a step 64 times smaller than the
+ * finest. */
+gm_status gm_order_measure(const gm_scheme *scheme, const gm_problem *problem, double t0,
                            const double *y0, double t_end, double dt0, size_t n_levels,
-                           const struct gm_method *reference, gm_order_result *out,
-                           gm_error *err);
+                           double refinement, const struct gm_method *reference,
+                           gm_order_result *out, gm_error *err);
 
 #ifdef __cplusplus
 }

@@ -4,6 +4,7 @@
 #include "methods/internal.h"
 
 typedef struct {
+  gm_tableau *tab;
   double *k;      /* n_stages × n stage derivatives */
   double *stage;  /* n: the stage value */
 } explicit_rk_work;
@@ -12,6 +13,8 @@ static gm_status init(gm_integrator *it) {
   explicit_rk_work *w = calloc(1, sizeof *w);
   if (w == NULL) return GM_ENOMEM;
   it->work = w;
+  gm_status st = gm_method_tableau(it->method, &w->tab);
+  if (st != GM_OK) return st;
   w->k = calloc(it->method->n_stages * it->n, sizeof *w->k);
   w->stage = calloc(it->n, sizeof *w->stage);
   return (w->k && w->stage) ? GM_OK : GM_ENOMEM;
@@ -20,6 +23,7 @@ static gm_status init(gm_integrator *it) {
 static void release(gm_integrator *it) {
   explicit_rk_work *w = it->work;
   if (w == NULL) return;
+  gm_tableau_free(w->tab);
   free(w->k);
   free(w->stage);
   free(w);
@@ -29,7 +33,7 @@ static void release(gm_integrator *it) {
 static gm_status step(gm_integrator *it, double t, double h, const double *y, double *y_new,
                       double *delta) {
   explicit_rk_work *w = it->work;
-  const gm_method *m = it->method;
+  const gm_tableau *m = w->tab;
   const size_t n = it->n, s = m->n_stages;
   for (size_t i = 0; i < s; ++i) {
     const double *arg = y;
@@ -55,4 +59,4 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
   return GM_OK;
 }
 
-const gm_stepper gm_explicit_rk_stepper = {init, step, release, NULL, NULL};
+const gm_stepper gm_explicit_rk_stepper = {init, step, release, NULL, NULL, NULL};

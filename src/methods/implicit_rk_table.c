@@ -9,11 +9,27 @@ static const double midpoint_a[] = {0.5};
 static const double midpoint_b[] = {1.0};
 static const double midpoint_c[] = {0.5};
 
+/* Gauss–Legendre collocation with s stages: order 2s, symplectic, symmetric, keeps quadratic
+ * invariants (Butcher 1964; GNI (2006), §II.1.3, Thm IV.2.1, Thm VI.4.2). Coefficients from the
+ * Gauss nodes at create time (collocation.c). */
+#define GAUSS(s_, name_)                                                                      \
+  {.name = name_, .family = GM_FAMILY_IMPLICIT_RK, .order = 2 * (s_), .n_stages = (s_),       \
+   .flags = GM_SYMPLECTIC | GM_SYMMETRIC | GM_IMPLICIT, .accepts = GM_PROBLEM_FIRST_ORDER,    \
+   .compute = gm_gauss_tableau,                                                               \
+   .description = "Gauss-Legendre collocation, " #s_ " stages, order " #s_ "x2",              \
+   .reference = "Butcher, Math. Comp. 18 (1964) 50; Hairer, Lubich & Wanner, GNI (2006), "    \
+                "Sect. II.1.3, VI.4"}
+
 const gm_method gm_implicit_rk_methods[] = {
-    {"midpoint", GM_FAMILY_IMPLICIT_RK, 2, 1, GM_SYMPLECTIC | GM_SYMMETRIC | GM_IMPLICIT,
-     GM_PROBLEM_FIRST_ORDER, midpoint_a, midpoint_b, midpoint_c,
-     "implicit midpoint rule (Gauss, 1 stage), Newton per step",
-     "Hairer, Lubich & Wanner, GNI (2006), Sect. VI.3 and IV.2"},
+    {.name = "midpoint", .family = GM_FAMILY_IMPLICIT_RK, .order = 2, .n_stages = 1,
+     .flags = GM_SYMPLECTIC | GM_SYMMETRIC | GM_IMPLICIT, .accepts = GM_PROBLEM_FIRST_ORDER,
+     .a = midpoint_a, .b = midpoint_b, .c = midpoint_c,
+     .description = "implicit midpoint rule (Gauss, 1 stage), Newton per step",
+     .reference = "Hairer, Lubich & Wanner, GNI (2006), Sect. VI.3 and IV.2"},
+    GAUSS(1, "gauss-1"),   GAUSS(2, "gauss-2"),   GAUSS(3, "gauss-3"),   GAUSS(4, "gauss-4"),
+    GAUSS(5, "gauss-5"),   GAUSS(6, "gauss-6"),   GAUSS(7, "gauss-7"),   GAUSS(8, "gauss-8"),
+    GAUSS(9, "gauss-9"),   GAUSS(10, "gauss-10"), GAUSS(11, "gauss-11"), GAUSS(12, "gauss-12"),
+    GAUSS(13, "gauss-13"), GAUSS(14, "gauss-14"), GAUSS(15, "gauss-15"), GAUSS(16, "gauss-16"),
 };
 const size_t gm_n_implicit_rk_methods =
     sizeof gm_implicit_rk_methods / sizeof gm_implicit_rk_methods[0];

@@ -11,10 +11,19 @@ extern const gm_method gm_splitting_methods[];
 extern const size_t gm_n_splitting_methods;
 extern const gm_method gm_implicit_rk_methods[];
 extern const size_t gm_n_implicit_rk_methods;
+extern const gm_method gm_composition_methods[];
+extern const size_t gm_n_composition_methods;
+
+/* Computed coefficients (collocation.c). */
+gm_status gm_gauss_tableau(const gm_method *m, gm_tableau *t);
+gm_status gm_lobatto_iiia_iiib_tableau(const gm_method *m, gm_tableau *t);
+extern const gm_method gm_partitioned_rk_methods[];
+extern const size_t gm_n_partitioned_rk_methods;
 
 /* Steppers, one per family. */
 extern const gm_stepper gm_explicit_rk_stepper;
 extern const gm_stepper gm_splitting_stepper;
 extern const gm_stepper gm_implicit_rk_stepper;
+extern const gm_stepper gm_composition_stepper;
 
 #endif

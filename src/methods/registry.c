@@ -12,6 +12,8 @@ static const table_ref tables[] = {
     {gm_explicit_rk_methods, &gm_n_explicit_rk_methods},
     {gm_splitting_methods, &gm_n_splitting_methods},
     {gm_implicit_rk_methods, &gm_n_implicit_rk_methods},
+    {gm_composition_methods, &gm_n_composition_methods},
+    {gm_partitioned_rk_methods, &gm_n_partitioned_rk_methods},
 };
 static const size_t n_tables = sizeof tables / sizeof tables[0];
 
@@ -46,6 +48,10 @@ const char *gm_method_family_name(gm_method_family family) {
       return "splitting";
     case GM_FAMILY_IMPLICIT_RK:
       return "implicit-rk";
+    case GM_FAMILY_COMPOSITION:
+      return "composition";
+    case GM_FAMILY_PARTITIONED_RK:
+      return "partitioned-rk";
   }
   return "unknown";
 }
@@ -56,14 +62,19 @@ const char *gm_method_flag_name(size_t bit) {
   return bit < GM_N_METHOD_FLAGS ? names[bit] : NULL;
 }
 
-const gm_stepper *gm_stepper_for(const gm_method *method) {
+const gm_stepper *gm_stepper_for(const gm_method *method, const gm_method *basic) {
   switch (method->family) {
     case GM_FAMILY_EXPLICIT_RK:
       return &gm_explicit_rk_stepper;
     case GM_FAMILY_SPLITTING:
       return &gm_splitting_stepper;
     case GM_FAMILY_IMPLICIT_RK:
+    case GM_FAMILY_PARTITIONED_RK:
       return &gm_implicit_rk_stepper;
+    case GM_FAMILY_COMPOSITION:
+      if (basic == NULL) return NULL;
+      return basic->family == GM_FAMILY_SPLITTING ? &gm_splitting_stepper
+                                                  : &gm_composition_stepper;
   }
   return NULL;
 }

@@ -1,8 +1,9 @@
-/* Stepper for drift–kick splitting methods on separable H = T(p) + V(q).
- * Stage i: drift q += a_i h ∇T(p), then kick p -= b_i h ∇V(q); zero coefficients are skipped.
- * The table is compiled at create time into a flat list of operations, so a step is one loop
- * over them. When the first operation is a kick and so is the last, the last force of a step
- * is the first of the next and is reused (first same as last). */
+/* Stepper for drift–kick splitting methods on separable H = T(p) + V(q), and for compositions
+ * of them (yoshida-6 of verlet...). Stage i: drift q += a_i h ∇T(p), then kick p -= b_i h ∇V(q);
+ * zero coefficients are skipped. The table is compiled at create time into a flat list of
+ * operations, adjacent kicks (drifts) merged, so a step is one loop over them. When the first
+ * operation is a kick and so is the last, the last force of a step is the first of the next and
+ * is reused (first same as last). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -26,32 +27,69 @@ typedef struct {
   int force_valid;    /* `force` holds ∇V at the current state's q */
 } splitting_work;
 
+/* Append the drift–kick pairs (a_i, b_i), scaled by `scale`, merging an operation into the
+ * previous one of the same kind: two kicks (or drifts) in a row commute exactly. */
+static void append_ops(splitting_work *w, const double *a, const double *b, size_t s,
+                       double scale) {
+  for (size_t i = 0; i < s; ++i) {
+    const double coef[2] = {scale * a[i], -scale * b[i]};
+    for (int kick = 0; kick < 2; ++kick) {
+      if (coef[kick] == 0.0) continue;
+      if (w->n_ops > 0 && w->ops[w->n_ops - 1].kick == kick)
+        w->ops[w->n_ops - 1].coef += coef[kick];
+      else
+        w->ops[w->n_ops++] = (split_op){coef[kick], kick, 0, 0};
+    }
+  }
+}
+
+/* The operation list of a splitting method, or of a composition of a splitting method
+ * (Φ_{γ_s h} ∘ … ∘ Φ_{γ_1 h}: the basic method's operations scaled by each γ_i). */
+static gm_status build_ops(gm_integrator *it, splitting_work *w) {
+  const gm_method *m = it->method;
+  const gm_method *split = m->family == GM_FAMILY_COMPOSITION ? it->basic : m;
+  gm_tableau *outer = NULL, *tab = NULL;
+  gm_status st = gm_method_tableau(split, &tab);
+  if (st == GM_OK && m->family == GM_FAMILY_COMPOSITION) st = gm_method_tableau(m, &outer);
+  if (st != GM_OK) {
+    gm_tableau_free(tab);
+    return gm_fail(it->errmsg, sizeof it->errmsg, st, "method '%s': no coefficients", m->name);
+  }
+  size_t copies = outer != NULL ? outer->n_stages : 1;
+  w->ops = calloc(2 * tab->n_stages * copies, sizeof *w->ops);
+  if (w->ops == NULL) st = GM_ENOMEM;
+  for (size_t k = 0; k < copies && st == GM_OK; ++k)
+    append_ops(w, tab->a, tab->b, tab->n_stages, outer != NULL ? outer->gamma[k] : 1.0);
+  gm_tableau_free(tab);
+  gm_tableau_free(outer);
+  return st;
+}
+
 static gm_status init(gm_integrator *it) {
   splitting_work *w = calloc(1, sizeof *w);
   if (w == NULL) return GM_ENOMEM;
   it->work = w;
-  const gm_method *m = it->method;
-  const size_t d = it->dim, s = m->n_stages;
-  w->ops = calloc(2 * s, sizeof *w->ops);
+  const size_t d = it->dim;
+  gm_status st = build_ops(it, w);
+  if (st != GM_OK) return st;
   w->force = calloc(d, sizeof(double));
   w->velocity = calloc(d, sizeof(double));
   w->q_eval = calloc(d, sizeof(double));
   w->p_eval = calloc(d, sizeof(double));
-  if (!w->ops || !w->force || !w->velocity || !w->q_eval || !w->p_eval) return GM_ENOMEM;
+  if (!w->force || !w->velocity || !w->q_eval || !w->p_eval) return GM_ENOMEM;
   int q_touched = 0, p_touched = 0;
-  for (size_t i = 0; i < s; ++i) {
-    if (m->a[i] != 0.0) {
-      w->ops[w->n_ops++] = (split_op){m->a[i], 0, !q_touched, !p_touched};
-      q_touched = 1;
-    }
-    if (m->b[i] != 0.0) {
-      w->ops[w->n_ops++] = (split_op){-m->b[i], 1, !p_touched, !q_touched};
+  for (size_t k = 0; k < w->n_ops; ++k) {
+    split_op *op = &w->ops[k];
+    op->first = op->kick ? !p_touched : !q_touched;
+    op->eval_old = op->kick ? !q_touched : !p_touched;
+    if (op->kick)
       p_touched = 1;
-    }
+    else
+      q_touched = 1;
   }
   if (!q_touched || !p_touched)
-    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
-                   "method '%s' never updates %s", m->name, q_touched ? "p" : "q");
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL, "method '%s' never updates %s",
+                   it->method->name, q_touched ? "p" : "q");
   w->fsal = w->ops[0].kick && w->ops[w->n_ops - 1].kick;
   return GM_OK;
 }
@@ -164,4 +202,4 @@ static gm_status run(gm_integrator *it, const gm_run *r, size_t k_from, size_t k
   return st;
 }
 
-const gm_stepper gm_splitting_stepper = {init, step, release, invalidate, run};
+const gm_stepper gm_splitting_stepper = {init, step, release, invalidate, run, NULL};

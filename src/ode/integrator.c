@@ -31,21 +31,45 @@ static void list_kinds(unsigned accepts, char *buf, size_t cap) {
 
 static double *alloc_doubles(size_t n) { return calloc(n ? n : 1, sizeof(double)); }
 
-gm_status gm_integrator_create(const gm_method *method, const gm_problem *problem,
-                               gm_integrator **out, gm_error *err) {
+/* A composition needs a symmetric basic method of order 2 that is not itself a composition:
+ * the row's order holds for that case (GNI (2006), §V.3). */
+static gm_status check_basic(const gm_method *method, const gm_method *basic, gm_error *err) {
+  if (basic == NULL)
+    return gm_error_set(err, GM_EINVAL, "composition '%s' needs a basic method", method->name);
+  if (basic->family == GM_FAMILY_COMPOSITION || !(basic->flags & GM_SYMMETRIC) ||
+      basic->order != 2)
+    return gm_error_set(err, GM_EINVAL,
+                        "'%s' cannot be the basic method of '%s': it must be a symmetric "
+                        "method of order 2 (e.g. verlet, midpoint, lobatto-iiia-iiib-2)",
+                        basic->name, method->name);
+  return GM_OK;
+}
+
+static gm_status create(const gm_method *method, const gm_method *basic,
+                        const gm_problem *problem, gm_integrator **out, gm_error *err) {
   if (out == NULL) return gm_error_set(err, GM_EINVAL, "output pointer is NULL");
   *out = NULL;
   if (method == NULL) return gm_error_set(err, GM_EINVAL, "method is NULL");
   gm_status st = gm_problem_validate(problem, err);
   if (st != GM_OK) return st;
-  if (!accepts_kind(method->accepts, problem->kind)) {
+  if (method->family == GM_FAMILY_COMPOSITION) {
+    if ((st = check_basic(method, basic, err)) != GM_OK) return st;
+  }
+  const gm_method *integrates = basic != NULL ? basic : method;
+  if (!accepts_kind(integrates->accepts, problem->kind)) {
     char kinds[96];
-    list_kinds(method->accepts, kinds, sizeof kinds);
+    list_kinds(integrates->accepts, kinds, sizeof kinds);
+    if (basic != NULL)
+      return gm_error_set(err, GM_EUNSUPPORTED,
+                          "'%s' of '%s' cannot integrate a %s problem: '%s' accepts %s problems; "
+                          "compose another basic method (e.g. midpoint)",
+                          method->name, basic->name, gm_problem_kind_name(problem->kind),
+                          basic->name, kinds);
     return gm_error_set(err, GM_EUNSUPPORTED,
                         "method '%s' cannot integrate a %s problem: it accepts %s problems",
                         method->name, gm_problem_kind_name(problem->kind), kinds);
   }
-  const gm_stepper *stepper = gm_stepper_for(method);
+  const gm_stepper *stepper = gm_stepper_for(method, basic);
   if (stepper == NULL)
     return gm_error_set(err, GM_EINVAL, "method '%s' has no stepper for its family",
                         method->name);
@@ -53,6 +77,7 @@ gm_status gm_integrator_create(const gm_method *method, const gm_problem *proble
   gm_integrator *it = calloc(1, sizeof *it);
   if (it == NULL) return gm_error_set(err, GM_ENOMEM, "out of memory");
   it->method = method;
+  it->basic = basic;
   it->problem = problem;
   it->stepper = stepper;
   it->n = gm_problem_state_size(problem);
@@ -80,6 +105,72 @@ gm_status gm_integrator_create(const gm_method *method, const gm_problem *proble
   }
   *out = it;
   return GM_OK;
+}
+
+gm_status gm_integrator_create(const gm_method *method, const gm_problem *problem,
+                               gm_integrator **out, gm_error *err) {
+  const gm_method *basic = NULL;
+  if (method != NULL && method->family == GM_FAMILY_COMPOSITION) {
+    basic = gm_method_find(method->basic);
+    if (basic == NULL)
+      return gm_error_set(err, GM_EINVAL, "composition '%s': default basic method '%s' not found",
+                          method->name, method->basic ? method->basic : "(none)");
+  }
+  return create(method, basic, problem, out, err);
+}
+
+gm_status gm_integrator_create_scheme(const gm_scheme *scheme, const gm_problem *problem,
+                                      gm_integrator **out, gm_error *err) {
+  if (out != NULL) *out = NULL;
+  if (scheme == NULL) return gm_error_set(err, GM_EINVAL, "scheme is NULL");
+  const gm_method *m = scheme->method;
+  gm_status st;
+  if (scheme->basic == NULL) {
+    st = gm_integrator_create(m, problem, out, err);
+  } else if (m != NULL && m->family != GM_FAMILY_COMPOSITION) {
+    return gm_error_set(err, GM_EINVAL, "'%s' is not a composition method: it takes no basic "
+                        "method", m->name);
+  } else {
+    st = create(m, scheme->basic, problem, out, err);
+  }
+  if (st != GM_OK) return st;
+  if ((st = gm_integrator_set_solver(*out, scheme->solver)) == GM_OK)
+    st = gm_integrator_set_compensated(*out, scheme->compensated);
+  if (st != GM_OK) {
+    gm_error_set(err, st, "%s", (*out)->errmsg);
+    gm_integrator_free(*out);
+    *out = NULL;
+  }
+  return st;
+}
+
+gm_status gm_integrator_set_solver(gm_integrator *it, gm_solver solver) {
+  if (it == NULL) return GM_EINVAL;
+  if (solver < GM_SOLVER_DEFAULT || solver > GM_SOLVER_FIXED_POINT_POSITIONS)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL, "unknown solver %d", (int)solver);
+  if (it->stepper->set_solver == NULL) {
+    if (solver == GM_SOLVER_DEFAULT) return GM_OK;
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EUNSUPPORTED,
+                   "method '%s' is explicit: it has no stage equations to solve", it->method->name);
+  }
+  return it->stepper->set_solver(it, solver);
+}
+
+static const char *const solver_names[] = {"default", "newton", "simplified-newton", "fixed-point",
+                                           "fixed-point-positions"};
+
+const char *gm_solver_name(gm_solver solver) {
+  size_t i = (size_t)solver;
+  return i < sizeof solver_names / sizeof solver_names[0] ? solver_names[i] : "unknown";
+}
+
+gm_status gm_solver_find(const char *name, gm_solver *out) {
+  for (size_t i = 0; name != NULL && i < sizeof solver_names / sizeof solver_names[0]; ++i)
+    if (strcmp(solver_names[i], name) == 0) {
+      if (out != NULL) *out = (gm_solver)i;
+      return GM_OK;
+    }
+  return GM_ENOTFOUND;
 }
 
 void gm_integrator_free(gm_integrator *it) {

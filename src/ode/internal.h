@@ -36,10 +36,14 @@ typedef struct gm_stepper {
   /* Optional: steps k_from+1 .. k_to of `run` without compensation, each committed with
    * gm_commit_step. Saves the per-step dispatch where a step costs little. */
   gm_status (*run)(gm_integrator *it, const gm_run *run, size_t k_from, size_t k_to);
+  /* Optional: accept a solver for the stage equations (it->solver is set on success). */
+  gm_status (*set_solver)(gm_integrator *it, gm_solver solver);
 } gm_stepper;
 
 struct gm_integrator {
   const gm_method *method;
+  const gm_method *basic;     /* composition: the basic method; NULL otherwise */
+  gm_solver solver;
   const gm_problem *problem;
   const gm_stepper *stepper;
   void *work;                 /* owned by the stepper */
@@ -103,6 +107,7 @@ static inline gm_status gm_commit_step(gm_integrator *it, double t_new) {
 }
 
 /* ---- steppers (src/methods) ------------------------------------------------------------ */
-const gm_stepper *gm_stepper_for(const gm_method *method);
+/* The stepper of a method (of a composition: depends on its basic method). */
+const gm_stepper *gm_stepper_for(const gm_method *method, const gm_method *basic);
 
 #endif

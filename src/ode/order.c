@@ -9,17 +9,19 @@
 /* Errors below this multiple of the solution's size are round-off, not truncation. */
 #define ROUNDOFF_FLOOR 1e-13
 
-static gm_status integrate_to(const gm_method *m, const gm_problem *pb, double t0, const double *y0,
-                              double t_end, double dt, double *y_end, gm_error *err) {
+static gm_status integrate_to(const gm_scheme *scheme, const gm_problem *pb, double t0,
+                              const double *y0, double t_end, double dt, double *y_end,
+                              gm_error *err) {
   gm_integrator *it = NULL;
-  gm_status st = gm_integrator_create(m, pb, &it, err);
+  gm_status st = gm_integrator_create_scheme(scheme, pb, &it, err);
   if (st != GM_OK) return st;
   st = gm_integrator_set_state(it, t0, y0);
   if (st == GM_OK) st = gm_integrator_integrate(it, t_end, dt);
   if (st == GM_OK)
     memcpy(y_end, gm_integrator_state(it), gm_problem_state_size(pb) * sizeof *y_end);
   else
-    gm_error_set(err, st, "%s at dt = %g: %s", m->name, dt, gm_integrator_errmsg(it));
+    gm_error_set(err, st, "%s at dt = %g: %s", scheme->method->name, dt,
+                 gm_integrator_errmsg(it));
   gm_integrator_free(it);
   return st;
 }
@@ -37,10 +39,11 @@ static const gm_method *default_reference(const gm_problem *pb) {
   return best;
 }
 
-gm_status gm_order_measure(const gm_method *method, const gm_problem *problem, double t0,
+gm_status gm_order_measure(const gm_scheme *scheme, const gm_problem *problem, double t0,
                            const double *y0, double t_end, double dt0, size_t n_levels,
-                           const gm_method *reference, gm_order_result *out, gm_error *err) {
-  if (method == NULL || problem == NULL || y0 == NULL || out == NULL)
+                           double refinement, const gm_method *reference, gm_order_result *out,
+                           gm_error *err) {
+  if (scheme == NULL || scheme->method == NULL || problem == NULL || y0 == NULL || out == NULL)
     return gm_error_set(err, GM_EINVAL, "NULL argument");
   if (n_levels < 2 || n_levels > GM_ORDER_MAX_LEVELS)
     return gm_error_set(err, GM_EINVAL, "number of levels must be in [2, %d], got %zu",
@@ -48,6 +51,9 @@ gm_status gm_order_measure(const gm_method *method, const gm_problem *problem, d
   if (!(dt0 > 0.0) || !isfinite(dt0) || !isfinite(t_end) || !(t_end > t0))
     return gm_error_set(err, GM_EINVAL, "need dt0 > 0 and t_end > t0 (got dt0 = %g, t_end = %g)",
                         dt0, t_end);
+  if (!(refinement > 1.0) || !isfinite(refinement))
+    return gm_error_set(err, GM_EINVAL, "refinement must be a finite number > 1, got %g",
+                        refinement);
   memset(out, 0, sizeof *out);
   const size_t n = gm_problem_state_size(problem);
   double *exact = malloc(n * sizeof *exact), *y = malloc(n * sizeof *y);
@@ -57,7 +63,7 @@ gm_status gm_order_measure(const gm_method *method, const gm_problem *problem, d
     return gm_error_set(err, GM_ENOMEM, "out of memory");
   }
   gm_status st = GM_OK;
-  double dt_min = dt0 / pow(2.0, (double)(n_levels - 1));
+  double dt_min = dt0 / pow(refinement, (double)(n_levels - 1));
   if (problem->exact != NULL) {
     out->reference_is_exact = 1;
     if (problem->exact(problem->ctx, t_end, exact) != 0)
@@ -68,12 +74,13 @@ gm_status gm_order_measure(const gm_method *method, const gm_problem *problem, d
     if (reference == NULL)
       st = gm_error_set(err, GM_EUNSUPPORTED, "no exact solution and no reference method");
     else
-      st = integrate_to(reference, problem, t0, y0, t_end, dt_min / 64.0, exact, err);
+      st = integrate_to(&(gm_scheme){reference, NULL, GM_SOLVER_DEFAULT, 0}, problem, t0, y0,
+                        t_end, dt_min / 64.0, exact, err);
   }
   double scale = fmax(1.0, gm_norm_inf(n, exact));
   for (size_t l = 0; l < n_levels && st == GM_OK; ++l) {
-    double dt = dt0 / pow(2.0, (double)l);
-    st = integrate_to(method, problem, t0, y0, t_end, dt, y, err);
+    double dt = dt0 / pow(refinement, (double)l);
+    st = integrate_to(scheme, problem, t0, y0, t_end, dt, y, err);
     if (st != GM_OK) break;
     double e = 0.0;
     for (size_t i = 0; i < n; ++i) e = fmax(e, fabs(y[i] - exact[i]));

@@ -179,10 +179,17 @@ Test(integrator, newton_failure_is_reported) {
   pb.rhs = tan_rhs;
   double y0 = 0.0;
   gm_integrator *it = test_integrator(gm_method_find("midpoint"), &pb, 0.0, &y0);
+  /* full Newton oscillates without converging */
+  cr_assert_eq(gm_integrator_set_solver(it, GM_SOLVER_NEWTON), GM_OK);
   cr_expect_eq(gm_integrator_step(it, 2.0), GM_ENOCONV);
   cr_expect(strstr(gm_integrator_errmsg(it), "did not converge") != NULL, "%s",
             gm_integrator_errmsg(it));
-  cr_expect_eq(gm_integrator_stats(it).newton_failures, 1);
+  cr_expect(strstr(gm_integrator_errmsg(it), "t = 0") != NULL, "%s", gm_integrator_errmsg(it));
+  /* simplified Newton runs away to infinity: also reported, never a silent NaN */
+  cr_assert_eq(gm_integrator_set_solver(it, GM_SOLVER_SIMPLIFIED_NEWTON), GM_OK);
+  gm_status st = gm_integrator_step(it, 2.0);
+  cr_expect(st == GM_ENOCONV || st == GM_EDOMAIN, "%s", gm_strerror(st));
+  cr_expect_eq(gm_integrator_stats(it).newton_failures, 2);
   cr_expect_eq(gm_integrator_state(it)[0], 0.0);
   cr_expect_eq(gm_integrator_time(it), 0.0);
   /* and a small step works, with a finite-difference Jacobian since none was given */
