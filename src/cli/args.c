@@ -67,11 +67,8 @@ static int store(const char *command, cli_option *o, const char *value) {
     case CLI_ARG_SETTING: {
       cli_settings *s = o->target;
       const char *eq = strchr(value, '=');
-      double x;
-      if (eq == NULL || eq == value || (size_t)(eq - value) >= 64 ||
-          parse_double(eq + 1, &x) != 0) {
-        cli_error(command, "%s expects name=number (e.g. --set e=0.6), got '%s'", o->name,
-                  value);
+      if (eq == NULL || eq == value || (size_t)(eq - value) >= 64 || eq[1] == '\0') {
+        cli_error(command, "%s expects name=value (e.g. --set e=0.6), got '%s'", o->name, value);
         return CLI_EXIT_USAGE;
       }
       if (s->n == CLI_MAX_SETTINGS) {
@@ -143,13 +140,13 @@ int cli_parse(const char *command, int argc, char **argv, cli_option *options,
   return CLI_EXIT_OK;
 }
 
-void cli_setting_split(const char *item, char *name, size_t cap, double *value) {
+const char *cli_setting_split(const char *item, char *name, size_t cap) {
   const char *eq = strchr(item, '=');
   size_t len = (size_t)(eq - item);
   if (len >= cap) len = cap - 1;
   memcpy(name, item, len);
   name[len] = '\0';
-  *value = strtod(eq + 1, NULL);
+  return eq + 1;
 }
 
 int cli_check_positive(const char *command, const char *option, double value) {

@@ -33,7 +33,8 @@ void cli_error(const char *command, const char *fmt, ...);
 #define CLI_MAX_SETTINGS 64
 typedef struct cli_settings {
   size_t n;
-  const char *items[CLI_MAX_SETTINGS]; /* "name=value", borrowed from argv, checked */
+  const char *items[CLI_MAX_SETTINGS]; /* "name=value", borrowed from argv; name and value
+                                          non-empty, the value a number or a text */
 } cli_settings;
 
 typedef enum cli_arg_type {
@@ -57,8 +58,9 @@ typedef struct cli_option {
 int cli_parse(const char *command, int argc, char **argv, cli_option *options,
               size_t n_options, const char **positional, size_t max_positional,
               size_t *n_positional);
-/* Split a checked "name=value" setting; name is written to buf (capacity cap). */
-void cli_setting_split(const char *item, char *name, size_t cap, double *value);
+/* Split a checked "name=value" setting: name is written to buf (capacity cap); returns the
+ * value's text (borrowed from item). */
+const char *cli_setting_split(const char *item, char *name, size_t cap);
 /* Check a step size or time given on the command line: finite and > 0. */
 int cli_check_positive(const char *command, const char *option, double value);
 
@@ -79,6 +81,12 @@ void cli_unknown(const char *command, const char *kind, const char *query, cli_n
 /* ---- problems and methods by name (setup.c) -------------------------------------------- */
 /* NULL after printing an error with suggestions. */
 const gm_method *cli_find_method(const char *command, const char *name);
+/* Resolve --method, --basic (may be NULL) and --solver (may be NULL) into a scheme; prints the
+ * error and returns CLI_EXIT_USAGE for unknown names. */
+int cli_make_scheme(const char *command, const char *method, const char *basic,
+                    const char *solver, int compensated, gm_scheme *out);
+/* "verlet", or "yoshida-6 of midpoint" for a composition with another basic method. */
+void cli_scheme_name(const gm_scheme *scheme, char *buf, size_t cap);
 /* Create, set and build a model; returns an exit status (message printed on failure). */
 int cli_open_model(const char *command, const char *name, const cli_settings *settings,
                    gm_model **out);
@@ -87,7 +95,7 @@ size_t cli_find_invariant(const gm_problem *problem, const char *part);
 
 /* ---- one integration (simulate.c) ------------------------------------------------------- */
 typedef struct cli_sim_config {
-  const gm_method *method;
+  gm_scheme scheme;       /* method, basic method, solver, compensated summation */
   const gm_model *model;
   double dt;
   double t_end;           /* used when n_steps == 0: integrate to exactly t_end */
@@ -95,7 +103,6 @@ typedef struct cli_sim_config {
   size_t monitor_every;
   size_t csv_every;
   const char *csv_path;   /* NULL: no CSV */
-  int compensated;
 } cli_sim_config;
 
 typedef struct cli_sim_result {

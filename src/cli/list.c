@@ -96,7 +96,9 @@ static int problems_json(void) {
     cJSON *params = cJSON_AddObjectToObject(row, "parameters");
     for (size_t k = 0; k < p->n_params; ++k)
       cJSON_AddItemToObject(params, p->params[k].name,
-                            cli_json_number(p->params[k].default_value));
+                            p->params[k].type == GM_PARAM_TEXT
+                                ? cJSON_CreateString("")
+                                : cli_json_number(p->params[k].default_value));
     cJSON *inv = cJSON_AddArrayToObject(row, "invariants");
     if (has_energy_kind(p->kind)) cJSON_AddItemToArray(inv, cJSON_CreateString("energy"));
     for (size_t k = 0; k < p->n_invariants; ++k)
@@ -112,7 +114,10 @@ static void problem_params(const gm_model_info *p, char *buf, size_t cap) {
   buf[0] = '\0';
   char item[96];
   for (size_t k = 0; k < p->n_params; ++k) {
-    snprintf(item, sizeof item, "%s=%g", p->params[k].name, p->params[k].default_value);
+    if (p->params[k].type == GM_PARAM_TEXT) /* a text, unset by default */
+      snprintf(item, sizeof item, "%s=\"\"", p->params[k].name);
+    else
+      snprintf(item, sizeof item, "%s=%g", p->params[k].name, p->params[k].default_value);
     join(buf, cap, " ", item);
   }
 }

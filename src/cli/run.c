@@ -1,6 +1,7 @@
 /* geomint run PROBLEM: integrate one problem with one method; summary, JSON, CSV, plot. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <unistd.h>
 
 #include <cJSON.h>
@@ -8,12 +9,16 @@
 #include "cli/cli.h"
 
 static const char usage[] =
-    "usage: geomint run PROBLEM [--method NAME] [--dt H] [--t-end T | --steps N] [--every K]\n"
-    "                   [--out FILE.csv] [--plot FILE.png] [--set name=value ...]\n"
-    "                   [--compensated] [--json]\n\n"
+    "usage: geomint run PROBLEM [--method NAME] [--basic NAME] [--solver NAME] [--dt H]\n"
+    "                   [--t-end T | --steps N] [--every K] [--out FILE.csv] [--plot FILE.png]\n"
+    "                   [--set name=value ...] [--compensated] [--json]\n\n"
     "Integrate PROBLEM (see 'geomint list problems') from its initial state.\n\n"
     "options:\n"
     "  --method NAME      integration method (default verlet; see 'geomint list methods')\n"
+    "  --basic NAME       the basic method of a composition (default: the row's, verlet);\n"
+    "                     any symmetric order-2 method, e.g. midpoint for non-separable H\n"
+    "  --solver NAME      stage equations of implicit methods: newton, simplified-newton\n"
+    "                     (default), fixed-point, fixed-point-positions (q'' = f(q))\n"
     "  --dt H             step size (default 0.01)\n"
     "  --t-end T          final time (default 10); the steps are shortened to end exactly there\n"
     "  --steps N          take N steps of size H instead (not together with --t-end)\n"
@@ -25,7 +30,7 @@ static const char usage[] =
     "  --json             print one JSON object instead of the summary\n";
 
 typedef struct run_options {
-  const char *method;
+  const char *method, *basic, *solver;
   double dt, t_end;
   size_t steps, every;
   const char *out, *plot;
@@ -45,11 +50,14 @@ static cJSON *final_state(const gm_problem *pb, const cli_sim_result *r) {
   return final;
 }
 
-static int print_json(const char *problem, const gm_method *m, const gm_problem *pb,
+static int print_json(const char *problem, const gm_scheme *sc, const gm_problem *pb,
                       const run_options *o, const cli_sim_result *r) {
+  const gm_method *m = sc->method;
   cJSON *root = cJSON_CreateObject();
   cJSON_AddStringToObject(root, "problem", problem);
   cJSON_AddStringToObject(root, "method", m->name);
+  if (sc->basic != NULL) cJSON_AddStringToObject(root, "basic", sc->basic->name);
+  cJSON_AddStringToObject(root, "solver", gm_solver_name(sc->solver));
   cJSON_AddNumberToObject(root, "dt", o->dt);
   cJSON_AddNumberToObject(root, "steps", (double)r->stats.steps);
   cJSON_AddItemToObject(root, "t0", cli_json_number(r->t0));
@@ -58,6 +66,8 @@ static int print_json(const char *problem, const gm_method *m, const gm_problem 
   cJSON_AddNumberToObject(root, "jacobian_evals", (double)r->stats.jacobian_evals);
   cJSON_AddNumberToObject(root, "fd_jacobians", (double)r->stats.fd_jacobians);
   cJSON_AddNumberToObject(root, "newton_iterations", (double)r->stats.newton_iterations);
+  cJSON_AddNumberToObject(root, "fixed_point_iterations",
+                          (double)r->stats.fixed_point_iterations);
   cJSON_AddNumberToObject(root, "wall_s", r->wall_s);
   cJSON_AddBoolToObject(root, "compensated", o->compensated != 0);
   cJSON_AddNumberToObject(root, "every", (double)o->every);
@@ -86,9 +96,12 @@ static void print_vector(const char *label, const double *x, size_t n) {
   putchar('\n');
 }
 
-static void print_summary(const char *problem, const gm_method *m, const gm_problem *pb,
+static void print_summary(const char *problem, const gm_scheme *sc, const gm_problem *pb,
                           const run_options *o, const cli_sim_result *r) {
-  printf("%s with %s (order %d, %s%s)\n", problem, m->name, m->order,
+  const gm_method *m = sc->method;
+  char name[128];
+  cli_scheme_name(sc, name, sizeof name);
+  printf("%s with %s (order %d, %s%s)\n", problem, name, m->order,
          gm_method_family_name(m->family), o->compensated ? ", compensated" : "");
   printf("steps             %zu of dt = %g, t = %g .. %.10g\n", r->stats.steps, o->dt, r->t0,
          r->t_final);
@@ -117,15 +130,22 @@ static void print_summary(const char *problem, const gm_method *m, const gm_prob
   if (o->plot != NULL) printf("wrote %s\n", o->plot);
 }
 
-static int check_options(const run_options *o, const cli_option *options) {
-  /* options[] order: see run_main */
+/* Was the option given on the command line? */
+static int seen(const cli_option *options, size_t n, const char *name) {
+  for (size_t i = 0; i < n; ++i)
+    if (strcmp(options[i].name, name) == 0) return options[i].seen;
+  return 0;
+}
+
+static int check_options(const run_options *o, const cli_option *options, size_t n_options) {
   if (cli_check_positive("run", "--dt", o->dt) != CLI_EXIT_OK) return CLI_EXIT_USAGE;
-  if (options[2].seen && options[3].seen) {
+  const int t_end = seen(options, n_options, "--t-end"), steps = seen(options, n_options, "--steps");
+  if (t_end && steps) {
     cli_error("run", "give either --t-end or --steps, not both");
     return CLI_EXIT_USAGE;
   }
   if (cli_check_positive("run", "--t-end", o->t_end) != CLI_EXIT_OK) return CLI_EXIT_USAGE;
-  if (options[3].seen && o->steps == 0) {
+  if (steps && o->steps == 0) {
     cli_error("run", "--steps must be at least 1");
     return CLI_EXIT_USAGE;
   }
@@ -137,11 +157,12 @@ static int check_options(const run_options *o, const cli_option *options) {
 }
 
 /* Integrate, then plot; returns an exit status. tmp_csv: a temporary file for the plot. */
-static int run_model(const char *problem, const gm_model *model, const gm_method *m,
+static int run_model(const char *problem, const gm_model *model, const gm_scheme *sc,
                      const run_options *o, const char *tmp_csv) {
   const gm_problem *pb = gm_model_problem(model);
-  cli_sim_config c = {m, model, o->dt, o->t_end, o->steps, o->every, o->every,
-                      o->out != NULL ? o->out : tmp_csv, o->compensated};
+  const gm_method *m = sc->method;
+  cli_sim_config c = {*sc, model, o->dt, o->t_end, o->steps, o->every, o->every,
+                      o->out != NULL ? o->out : tmp_csv};
   cli_sim_result r;
   int status = cli_simulate("run", &c, &r);
   if (status == CLI_EXIT_OK && o->plot != NULL) {
@@ -152,18 +173,19 @@ static int run_model(const char *problem, const gm_model *model, const gm_method
   }
   if (status == CLI_EXIT_OK) {
     if (o->json)
-      status = print_json(problem, m, pb, o, &r);
+      status = print_json(problem, sc, pb, o, &r);
     else
-      print_summary(problem, m, pb, o, &r);
+      print_summary(problem, sc, pb, o, &r);
   }
   cli_sim_result_clear(&r);
   return status;
 }
 
 static int run_main(int argc, char **argv) {
-  run_options o = {"verlet", 0.01, 10.0, 0, 1, NULL, NULL, {0, {0}}, 0, 0};
+  run_options o = {"verlet", NULL, NULL, 0.01, 10.0, 0, 1, NULL, NULL, {0, {0}}, 0, 0};
   cli_option options[] = {
       {"--method", CLI_ARG_STRING, &o.method, 0}, {"--dt", CLI_ARG_DOUBLE, &o.dt, 0},
+      {"--basic", CLI_ARG_STRING, &o.basic, 0},   {"--solver", CLI_ARG_STRING, &o.solver, 0},
       {"--t-end", CLI_ARG_DOUBLE, &o.t_end, 0},   {"--steps", CLI_ARG_COUNT, &o.steps, 0},
       {"--every", CLI_ARG_COUNT, &o.every, 0},    {"--out", CLI_ARG_STRING, &o.out, 0},
       {"--plot", CLI_ARG_STRING, &o.plot, 0},     {"--set", CLI_ARG_SETTING, &o.settings, 0},
@@ -182,9 +204,12 @@ static int run_main(int argc, char **argv) {
     cli_error("run", "which problem? e.g. 'geomint run kepler' (see 'geomint list problems')");
     return CLI_EXIT_USAGE;
   }
-  if ((status = check_options(&o, options)) != CLI_EXIT_OK) return status;
-  const gm_method *m = cli_find_method("run", o.method);
-  if (m == NULL) return CLI_EXIT_USAGE;
+  if ((status = check_options(&o, options, sizeof options / sizeof options[0])) != CLI_EXIT_OK)
+    return status;
+  gm_scheme scheme;
+  if ((status = cli_make_scheme("run", o.method, o.basic, o.solver, o.compensated, &scheme)) !=
+      CLI_EXIT_OK)
+    return status;
   gm_model *model = NULL;
   if ((status = cli_open_model("run", problem[0], &o.settings, &model)) != CLI_EXIT_OK)
     return status;
@@ -213,7 +238,7 @@ static int run_main(int argc, char **argv) {
     }
   }
   if (status == CLI_EXIT_OK)
-    status = run_model(problem[0], model, m, &o, have_tmp ? tmp_csv : NULL);
+    status = run_model(problem[0], model, &scheme, &o, have_tmp ? tmp_csv : NULL);
   if (have_tmp) remove(tmp_csv);
   gm_model_free(model);
   return status;

@@ -14,6 +14,33 @@ const gm_method *cli_find_method(const char *command, const char *name) {
   return m;
 }
 
+static const char *solver_name_at(const void *ctx, size_t i) {
+  (void)ctx;
+  const char *name = gm_solver_name((gm_solver)i);
+  return strcmp(name, "unknown") == 0 ? NULL : name;
+}
+
+int cli_make_scheme(const char *command, const char *method, const char *basic,
+                    const char *solver, int compensated, gm_scheme *out) {
+  *out = (gm_scheme){NULL, NULL, GM_SOLVER_DEFAULT, compensated};
+  if ((out->method = cli_find_method(command, method)) == NULL) return CLI_EXIT_USAGE;
+  if (basic != NULL && (out->basic = cli_find_method(command, basic)) == NULL)
+    return CLI_EXIT_USAGE;
+  if (solver != NULL && gm_solver_find(solver, &out->solver) != GM_OK) {
+    cli_unknown(command, "solver", solver, solver_name_at, NULL,
+                "solvers: newton, simplified-newton, fixed-point, fixed-point-positions");
+    return CLI_EXIT_USAGE;
+  }
+  return CLI_EXIT_OK;
+}
+
+void cli_scheme_name(const gm_scheme *scheme, char *buf, size_t cap) {
+  if (scheme->basic != NULL)
+    snprintf(buf, cap, "%s of %s", scheme->method->name, scheme->basic->name);
+  else
+    snprintf(buf, cap, "%s", scheme->method->name);
+}
+
 /* Names gm_model_set accepts: the parameters, then q1..qd, p1..pd or y1..yn. */
 typedef struct setting_names {
   const gm_model_info *info;
@@ -44,6 +71,23 @@ static int is_setting_name(const gm_model_info *info, const char *name) {
   }
 }
 
+/* Is name a text parameter (a file name, say) of the problem? */
+static int is_text_param(const gm_model_info *info, const char *name) {
+  for (size_t i = 0; i < info->n_params; ++i)
+    if (info->params[i].type == GM_PARAM_TEXT && strcmp(info->params[i].name, name) == 0)
+      return 1;
+  return 0;
+}
+
+/* The whole of text is one number (strtod's syntax, "nan" and "inf" included). */
+static int parse_number(const char *text, double *out) {
+  char *end = NULL;
+  double x = strtod(text, &end);
+  if (end == text || *end != '\0') return 0;
+  *out = x;
+  return 1;
+}
+
 /* The library's message, prefixed with the problem's name unless it already says it. */
 static void model_error(const char *command, const char *name, const char *setting,
                         const char *message) {
@@ -71,20 +115,32 @@ int cli_open_model(const char *command, const char *name, const cli_settings *se
   }
   const gm_model_info *info = gm_model_info_of(model);
   for (size_t k = 0; settings != NULL && k < settings->n; ++k) {
+    const char *item = settings->items[k];
     char key[64];
+    const char *text = cli_setting_split(item, key, sizeof key);
     double value;
-    cli_setting_split(settings->items[k], key, sizeof key, &value);
-    if (gm_model_set(model, key, value) == GM_OK) continue;
-    if (info != NULL && !is_setting_name(info, key)) {
+    gm_status st;
+    if (is_text_param(info, key))
+      st = gm_model_set_text(model, key, text);
+    else if (parse_number(text, &value))
+      st = gm_model_set(model, key, value);
+    else if (is_setting_name(info, key)) {
+      cli_error(command, "--set %s: %s expects a number, got '%s'", item, key, text);
+      gm_model_free(model);
+      return CLI_EXIT_USAGE;
+    } else
+      st = gm_model_set_text(model, key, text); /* an unknown name: the library says so */
+    if (st == GM_OK) continue;
+    if (!is_setting_name(info, key)) {
       setting_names s = {info, {0}};
       char list[512], what[96];
       snprintf(what, sizeof what, "parameter of %s", name);
       if (cli_suggest(key, setting_name_at, &s, list, sizeof list) > 0)
         cli_error(command, "unknown %s '%s'; did you mean: %s?", what, key, list);
       else
-        model_error(command, name, settings->items[k], gm_model_errmsg(model));
+        model_error(command, name, item, gm_model_errmsg(model));
     } else {
-      model_error(command, name, settings->items[k], gm_model_errmsg(model));
+      model_error(command, name, item, gm_model_errmsg(model));
     }
     gm_model_free(model);
     return CLI_EXIT_USAGE;

@@ -24,9 +24,11 @@ static int prepare(const char *command, const cli_sim_config *c, const double *y
   const gm_problem *pb = gm_model_problem(c->model);
   const char *problem = gm_model_info_of(c->model)->name;
   gm_error err = {{0}};
-  gm_status st = gm_integrator_create(c->method, pb, it, &err);
+  char name[128];
+  cli_scheme_name(&c->scheme, name, sizeof name);
+  gm_status st = gm_integrator_create_scheme(&c->scheme, pb, it, &err);
   if (st != GM_OK) {
-    cli_error(command, "%s with %s: %s", problem, c->method->name,
+    cli_error(command, "%s with %s: %s", problem, name,
               err.message[0] ? err.message : gm_strerror(st));
     return st == GM_ENOMEM ? CLI_EXIT_FAILURE : CLI_EXIT_USAGE;
   }
@@ -35,7 +37,6 @@ static int prepare(const char *command, const cli_sim_config *c, const double *y
     cli_error(command, "%s: initial state: %s", problem, gm_integrator_errmsg(*it));
     return CLI_EXIT_USAGE;
   }
-  if (c->compensated) gm_integrator_set_compensated(*it, 1);
   if (gm_monitor_create(pb, y0, &r->monitor) != GM_OK ||
       gm_integrator_add_observer(*it, gm_monitor_observe, r->monitor, c->monitor_every) !=
           GM_OK) {
@@ -92,7 +93,7 @@ int cli_simulate(const char *command, const cli_sim_config *c, cli_sim_result *r
       const char *why = gm_integrator_errmsg(it);
       if (csv != NULL && gm_csv_writer_errmsg(csv)[0] != '\0') why = gm_csv_writer_errmsg(csv);
       cli_error(command, "%s with %s failed at t = %.17g after %zu steps: %s",
-                gm_model_info_of(c->model)->name, c->method->name, r->t_final,
+                gm_model_info_of(c->model)->name, c->scheme.method->name, r->t_final,
                 r->stats.steps, why[0] ? why : gm_strerror(st));
       status = CLI_EXIT_FAILURE;
     }

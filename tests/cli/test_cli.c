@@ -513,6 +513,48 @@ Test(cli, bad_initial_state) {
   expect_usage_error("run kepler --method midpoint --set q1=0 --set q2=0", "kepler");
 }
 
+/* --set name=TEXT sets a text parameter: n-body reads its bodies from a file; a bad file is
+ * a usage error that names the file and the line; a text where a number belongs is one too. */
+static void write_text(const char *name, const char *text) {
+  FILE *f = fopen(path_in_tmp(name), "w");
+  cr_assert_not_null(f);
+  fputs(text, f);
+  fclose(f);
+}
+
+Test(cli, set_file_of_bodies) {
+  /* a binary star and a distant light body: m x y z vx vy vz */
+  write_text("bodies.txt",
+             "# binary\n"
+             "1 -0.5 0 0  0 -0.5 0\n"
+             "1  0.5 0 0  0  0.5 0\n"
+             "\n"
+             "1e-3 10 0 0 0 0.4 0  # far away\n");
+  run_output r = run_cli("run n-body --set file=bodies.txt --method verlet --dt 0.001 "
+                         "--t-end 1 --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  const cJSON *final = cJSON_GetObjectItem(o, "final");
+  cr_assert_eq(cJSON_GetArraySize(cJSON_GetObjectItem(final, "q")), 9);
+  double e = json_number(o, "max_rel_energy_error");
+  cr_assert(e > 0 && e < 1e-5, "energy error %g", e);
+  cJSON_Delete(o);
+  run_output_free(&r);
+  /* the same with --set file=PATH before a number setting, and a text given to a number */
+  r = run_cli("run n-body --set file=bodies.txt --set eps=0.1 --method verlet --steps 3");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_assert(strstr(r.out, "n-body with verlet") != NULL, "%s", r.out);
+  run_output_free(&r);
+
+  write_text("bad.txt", "1 0 0 0 0 0 0\n# ok\n1 1 0 0 0 0\n");
+  expect_usage_error("run n-body --set file=bad.txt", "bad.txt:3: expected 7 numbers");
+  expect_usage_error("run n-body --set file=missing.txt", "cannot open 'missing.txt'");
+  expect_usage_error("run n-body --set n=many", "--set n=many: n expects a number, got 'many'");
+  expect_usage_error("run kepler --set e=abc", "e expects a number");
+  expect_usage_error("run n-body --set file=", "name=value");
+  expect_usage_error("run n-body --set fil=bodies.txt", "did you mean: file");
+}
+
 /* A method/problem pair the library refuses: exit 2 with the library's message. */
 Test(cli, method_does_not_accept_problem) {
   const gm_method *method = NULL;
@@ -593,8 +635,8 @@ Test(cli, order_rk4_kepler) {
 }
 
 Test(cli, order_reference_run) {
-  /* the pendulum has no exact solution: a reference run of an explicit method is used */
-  run_output r = run_cli("order pendulum --method verlet --levels 4 --json");
+  /* Hénon–Heiles has no exact solution: a reference run of an explicit method is used */
+  run_output r = run_cli("order henon-heiles --method verlet --levels 4 --json");
   cr_assert_eq(r.status, 0, "%s", r.err);
   cJSON *o = parse_json(r.out);
   const gm_method *ref = gm_method_find(json_string(o, "reference"));
