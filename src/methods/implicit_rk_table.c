@@ -11,7 +11,8 @@ static const double midpoint_c[] = {0.5};
 
 /* Gauss–Legendre collocation with s stages: order 2s, symplectic, symmetric, keeps quadratic
  * invariants (Butcher 1964; GNI (2006), §II.1.3, Thm IV.2.1, Thm VI.4.2). Coefficients from the
- * Gauss nodes at create time (collocation.c). */
+ * Gauss nodes at create time (collocation.c), for any s; the table lists s ≤ 8 (order 16),
+ * beyond which double precision leaves nothing to gain. */
 #define GAUSS(s_, name_)                                                                      \
   {.name = name_, .family = GM_FAMILY_IMPLICIT_RK, .order = 2 * (s_), .n_stages = (s_),       \
    .flags = GM_SYMPLECTIC | GM_SYMMETRIC | GM_IMPLICIT, .accepts = GM_PROBLEM_FIRST_ORDER,    \
@@ -26,10 +27,8 @@ const gm_method gm_implicit_rk_methods[] = {
      .a = midpoint_a, .b = midpoint_b, .c = midpoint_c,
      .description = "implicit midpoint rule (Gauss, 1 stage), Newton per step",
      .reference = "Hairer, Lubich & Wanner, GNI (2006), Sect. VI.3 and IV.2"},
-    GAUSS(1, "gauss-1"),   GAUSS(2, "gauss-2"),   GAUSS(3, "gauss-3"),   GAUSS(4, "gauss-4"),
-    GAUSS(5, "gauss-5"),   GAUSS(6, "gauss-6"),   GAUSS(7, "gauss-7"),   GAUSS(8, "gauss-8"),
-    GAUSS(9, "gauss-9"),   GAUSS(10, "gauss-10"), GAUSS(11, "gauss-11"), GAUSS(12, "gauss-12"),
-    GAUSS(13, "gauss-13"), GAUSS(14, "gauss-14"), GAUSS(15, "gauss-15"), GAUSS(16, "gauss-16"),
+    GAUSS(1, "gauss-1"), GAUSS(2, "gauss-2"), GAUSS(3, "gauss-3"), GAUSS(4, "gauss-4"),
+    GAUSS(5, "gauss-5"), GAUSS(6, "gauss-6"), GAUSS(7, "gauss-7"), GAUSS(8, "gauss-8"),
 };
 const size_t gm_n_implicit_rk_methods =
     sizeof gm_implicit_rk_methods / sizeof gm_implicit_rk_methods[0];
