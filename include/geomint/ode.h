@@ -1,11 +1,15 @@
 /* geomint ode: problem descriptions, the integrator driver, observers and statistics.
  *
- * A problem is a plain struct of callbacks with a void *ctx (DESIGN §5). Three kinds exist today:
+ * A problem is a plain struct of callbacks with a void *ctx (DESIGN §5). The kinds:
  *   first order   y' = f(t, y),                           state y of length dim;
+ *   Poisson       y' = S(y)∇H(y), S skew-symmetric,       state y of length dim;
  *   Hamiltonian   H(q, p) with ∇_q H and ∇_p H,           state (q, p) of length 2·dim;
- *   separable     H = T(p) + V(q) with ∇T and ∇V,         state (q, p) of length 2·dim.
- * A separable problem is also Hamiltonian, and a Hamiltonian problem is also first order
- * (y' = J⁻¹∇H): a method that accepts a more general kind integrates the more special ones.
+ *   separable     H = T(p) + V(q) with ∇T and ∇V,         state (q, p) of length 2·dim;
+ *   Lagrangian    L(q, v) with ∂L/∂q and ∂L/∂v,           state (q, p) of length 2·dim,
+ *                 p = ∂L/∂v the momentum (the discrete one for variational integrators).
+ * separable ⊂ Hamiltonian ⊂ Poisson (S = J⁻¹) ⊂ first order: a method that accepts a more
+ * general kind integrates the more special ones. Lagrangian problems go to variational
+ * integrators.
  * Callbacks returning int return 0 on success; anything else stops the run with GM_ECALLBACK. */
 #ifndef GEOMINT_ODE_H
 #define GEOMINT_ODE_H
@@ -21,10 +25,13 @@ extern "C" {
 typedef enum gm_problem_kind {
   GM_PROBLEM_FIRST_ORDER = 1u << 0,
   GM_PROBLEM_HAMILTONIAN = 1u << 1,
-  GM_PROBLEM_SEPARABLE = 1u << 2
+  GM_PROBLEM_SEPARABLE = 1u << 2,
+  GM_PROBLEM_POISSON = 1u << 3,
+  GM_PROBLEM_LAGRANGIAN = 1u << 4
 } gm_problem_kind;
+#define GM_N_PROBLEM_KINDS 5
 
-/* "first-order", "hamiltonian", "separable" */
+/* "first-order", "hamiltonian", "separable", "poisson", "lagrangian" */
 const char *gm_problem_kind_name(gm_problem_kind kind);
 
 /* A conserved (or monitored) quantity of the full state y. */
@@ -32,6 +39,13 @@ typedef struct gm_invariant {
   const char *name;
   double (*value)(void *ctx, const double *y);
 } gm_invariant;
+
+/* A symmetry of a Lagrangian: the infinitesimal generator ξ_Q(q) of a group action that leaves
+ * L invariant. Its (discrete) Noether momentum p·ξ_Q(q) is conserved. */
+typedef struct gm_symmetry {
+  const char *name;
+  int (*generator)(void *ctx, const double *q, double *xi);
+} gm_symmetry;
 
 typedef struct gm_problem {
   gm_problem_kind kind;
@@ -59,6 +73,29 @@ typedef struct gm_problem {
   int (*kinetic_hessian)(void *ctx, const double *p, double *hessian);
   int (*potential_hessian)(void *ctx, const double *q, double *hessian);
 
+  /* Poisson (required for that kind): y' = S(y)∇H(y) */
+  double (*poisson_energy)(void *ctx, const double *y);                 /* H(y) */
+  int (*poisson_gradient)(void *ctx, const double *y, double *gradient); /* ∇H(y) */
+  int (*structure_matrix)(void *ctx, const double *y, double *s);       /* dim×dim, skew */
+  /* optional: ∇²H, dim×dim */
+  int (*poisson_hessian)(void *ctx, const double *y, double *hessian);
+
+  /* Lagrangian (required for that kind) */
+  double (*lagrangian)(void *ctx, const double *q, const double *v);
+  int (*dl_dq)(void *ctx, const double *q, const double *v, double *out);
+  int (*dl_dv)(void *ctx, const double *q, const double *v, double *out);
+  /* optional: second derivatives of L in (q, v), 2d×2d row-major */
+  int (*lagrangian_hessian)(void *ctx, const double *q, const double *v, double *hessian);
+  /* optional: holonomic constraints g(q) = 0 (g: R^dim → R^n_constraints) and ∂g/∂q */
+  size_t n_constraints;
+  int (*constraint)(void *ctx, const double *q, double *g);
+  int (*constraint_jacobian)(void *ctx, const double *q, double *jacobian); /* n_c × dim */
+  /* optional: a non-conservative force F(t, q, v) (Lagrange–d'Alembert) */
+  int (*force)(void *ctx, double t, const double *q, const double *v, double *f);
+  /* optional: symmetries of L, whose Noether momenta are monitored */
+  size_t n_symmetries;
+  const gm_symmetry *symmetries;   /* borrowed, n_symmetries entries */
+
   /* separable: set when T(p) = ½ pᵀM⁻¹p with a constant M, so ∇T is linear (it lets Gauss
    * methods iterate on positions only, GM_SOLVER_FIXED_POINT_POSITIONS) */
   int kinetic_is_quadratic;
@@ -69,11 +106,17 @@ typedef struct gm_problem {
   int (*exact)(void *ctx, double t, double *y);   /* exact solution from the initial state */
 } gm_problem;
 
-/* Length of the state vector: dim (first order) or 2·dim (Hamiltonian kinds). */
+/* Length of the state vector: dim (first order, Poisson) or 2·dim (Hamiltonian kinds,
+ * Lagrangian). */
 size_t gm_problem_state_size(const gm_problem *problem);
+/* Is the state a pair (q, p) of positions and momenta (Hamiltonian kinds, Lagrangian), rather
+ * than one vector y (first order, Poisson)? Also for a kind alone. */
+int gm_problem_has_momenta(const gm_problem *problem);
+int gm_problem_kind_has_momenta(gm_problem_kind kind);
 /* Check that the callbacks the kind requires are present. On failure the message says which. */
 gm_status gm_problem_validate(const gm_problem *problem, gm_error *err);
-/* Does the problem have an energy (Hamiltonian kinds)? Its value at the state y. */
+/* Does the problem have an energy (Hamiltonian kinds, Poisson, Lagrangian)? Its value at the
+ * state y (for a Lagrangian: p·v − L(q, v) with v from the Legendre transform p = ∂L/∂v). */
 int gm_problem_has_energy(const gm_problem *problem);
 double gm_problem_energy(const gm_problem *problem, const double *y);
 

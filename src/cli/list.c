@@ -14,8 +14,9 @@ static const char usage[] =
     "  --json       print a JSON array (one object per row) instead of a table\n"
     "  --markdown   print a Markdown table with the sources (the README and docs use it)\n";
 
-static const gm_problem_kind kinds[] = {GM_PROBLEM_FIRST_ORDER, GM_PROBLEM_HAMILTONIAN,
-                                        GM_PROBLEM_SEPARABLE};
+static const gm_problem_kind kinds[] = {GM_PROBLEM_FIRST_ORDER, GM_PROBLEM_POISSON,
+                                        GM_PROBLEM_HAMILTONIAN, GM_PROBLEM_SEPARABLE,
+                                        GM_PROBLEM_LAGRANGIAN};
 #define N_KINDS (sizeof kinds / sizeof kinds[0])
 
 static int has_energy_kind(gm_problem_kind kind) { return kind != GM_PROBLEM_FIRST_ORDER; }

@@ -41,7 +41,7 @@ typedef struct run_options {
 static cJSON *final_state(const gm_problem *pb, const cli_sim_result *r) {
   cJSON *final = cJSON_CreateObject();
   cJSON_AddItemToObject(final, "t", cli_json_number(r->t_final));
-  if (gm_problem_has_energy(pb)) {
+  if (gm_problem_has_momenta(pb)) {
     cJSON_AddItemToObject(final, "q", cli_json_numbers(r->y_final, pb->dim));
     cJSON_AddItemToObject(final, "p", cli_json_numbers(r->y_final + pb->dim, pb->dim));
   } else {
@@ -120,7 +120,7 @@ static void print_summary(const char *problem, const gm_scheme *sc, const gm_pro
     printf("note              %zu finite-difference Jacobians (no analytic Hessian)\n",
            r->stats.fd_jacobians);
   printf("final state at t = %.10g:\n", r->t_final);
-  if (gm_problem_has_energy(pb)) {
+  if (gm_problem_has_momenta(pb)) {
     print_vector("q", r->y_final, pb->dim);
     print_vector("p", r->y_final + pb->dim, pb->dim);
   } else {

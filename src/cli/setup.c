@@ -52,7 +52,7 @@ static const char *setting_name_at(const void *ctx, size_t i) {
   const gm_model_info *info = s->info;
   if (i < info->n_params) return info->params[i].name;
   i -= info->n_params;
-  int hamiltonian = info->kind != GM_PROBLEM_FIRST_ORDER;
+  int hamiltonian = gm_problem_kind_has_momenta(info->kind);
   size_t d = info->default_dim, n = hamiltonian ? 2 * d : d;
   if (i >= n) return NULL;
   if (hamiltonian)

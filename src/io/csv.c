@@ -44,7 +44,7 @@ static int name_columns(gm_csv_writer *w) {
   size_t c = 0;
   w->column_names[c++] = copy_string("t");
   for (size_t i = 0; i < w->n_state; ++i) {
-    if (w->has_energy)
+    if (gm_problem_has_momenta(pb))
       snprintf(name, sizeof name, "%c%zu", i < pb->dim ? 'q' : 'p', i % pb->dim + 1);
     else
       snprintf(name, sizeof name, "y%zu", i + 1);

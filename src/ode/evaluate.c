@@ -32,6 +32,18 @@ gm_status gm_eval_rhs(gm_integrator *it, double t, const double *y, double *f) {
       CALL(pb->kinetic_gradient(pb->ctx, y + d, f), "kinetic_gradient");
       CALL(pb->potential_gradient(pb->ctx, y, f + d), "potential_gradient");
       break;
+    case GM_PROBLEM_POISSON:
+      CALL(pb->poisson_gradient(pb->ctx, y, it->gradient), "poisson_gradient");
+      CALL(pb->structure_matrix(pb->ctx, y, it->structure), "structure_matrix");
+      for (size_t i = 0; i < d; ++i) {
+        double sum = 0.0;
+        for (size_t j = 0; j < d; ++j) sum += it->structure[i * d + j] * it->gradient[j];
+        f[i] = sum;
+      }
+      return GM_OK;
+    case GM_PROBLEM_LAGRANGIAN:
+      return gm_fail(it->errmsg, sizeof it->errmsg, GM_EUNSUPPORTED,
+                     "a Lagrangian problem has no first-order right-hand side");
   }
   for (size_t i = d; i < 2 * d; ++i) f[i] = -f[i];
   return GM_OK;
@@ -91,6 +103,9 @@ gm_status gm_eval_rhs_jacobian(gm_integrator *it, double t, const double *y, dou
       CALL(pb->potential_hessian(pb->ctx, y, it->hess), "potential_hessian");
       put_block(jac, d, 1, 0, it->hess, -1.0);
       return GM_OK;
+    case GM_PROBLEM_POISSON:
+    case GM_PROBLEM_LAGRANGIAN:
+      break; /* no analytic Jacobian: handled above */
   }
   return GM_EINVAL;
 }

@@ -8,18 +8,20 @@
 
 #include "ode/internal.h"
 
+/* separable ⊂ Hamiltonian ⊂ Poisson ⊂ first order; Lagrangian problems only where accepted. */
 static int accepts_kind(unsigned accepts, gm_problem_kind kind) {
-  if (accepts & (unsigned)kind) return 1;
-  /* separable ⊂ Hamiltonian ⊂ first order */
-  if (kind == GM_PROBLEM_SEPARABLE && (accepts & GM_PROBLEM_HAMILTONIAN)) return 1;
-  if (kind != GM_PROBLEM_FIRST_ORDER && (accepts & GM_PROBLEM_FIRST_ORDER)) return 1;
-  return 0;
+  unsigned as = (unsigned)kind;
+  if (kind == GM_PROBLEM_SEPARABLE) as |= GM_PROBLEM_HAMILTONIAN;
+  if (as & GM_PROBLEM_HAMILTONIAN) as |= GM_PROBLEM_POISSON;
+  if (as & GM_PROBLEM_POISSON) as |= GM_PROBLEM_FIRST_ORDER;
+  return (accepts & as) != 0;
 }
 
 static void list_kinds(unsigned accepts, char *buf, size_t cap) {
   buf[0] = '\0';
-  const gm_problem_kind kinds[] = {GM_PROBLEM_FIRST_ORDER, GM_PROBLEM_HAMILTONIAN,
-                                   GM_PROBLEM_SEPARABLE};
+  const gm_problem_kind kinds[] = {GM_PROBLEM_FIRST_ORDER, GM_PROBLEM_POISSON,
+                                   GM_PROBLEM_HAMILTONIAN, GM_PROBLEM_SEPARABLE,
+                                   GM_PROBLEM_LAGRANGIAN};
   size_t len = 0;
   for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i) {
     if (!(accepts & (unsigned)kinds[i])) continue;
@@ -92,8 +94,10 @@ static gm_status create(const gm_method *method, const gm_method *basic,
   it->fd_fp = alloc_doubles(n);
   it->fd_fm = alloc_doubles(n);
   it->hess = alloc_doubles(n * n);
+  it->structure = alloc_doubles(problem->kind == GM_PROBLEM_POISSON ? n * n : 1);
+  it->gradient = alloc_doubles(n);
   if (!it->y || !it->y_next || !it->delta || !it->carry || !it->carry_next || !it->fd_y ||
-      !it->fd_fp || !it->fd_fm || !it->hess) {
+      !it->fd_fp || !it->fd_fm || !it->hess || !it->structure || !it->gradient) {
     gm_integrator_free(it);
     return gm_error_set(err, GM_ENOMEM, "out of memory for a state of size %zu", n);
   }
@@ -185,6 +189,8 @@ void gm_integrator_free(gm_integrator *it) {
   free(it->fd_fp);
   free(it->fd_fm);
   free(it->hess);
+  free(it->structure);
+  free(it->gradient);
   free(it->observers);
   free(it);
 }

@@ -60,14 +60,20 @@ struct gm_integrator {
   /* finite-difference Jacobian work (allocated at create when no analytic one exists) */
   double *fd_y, *fd_fp, *fd_fm;
   double *hess;               /* 2d×2d Hessian of H (Hamiltonian kinds with a Hessian) */
+  double *structure, *gradient; /* Poisson: S(y) (n×n) and ∇H(y) (n) */
   char errmsg[GM_ERRMSG_SIZE];
 };
+
+/* E = p·v − L(q, v) with v from p = ∂L/∂v(q, v) (Newton's method; src/ode/lagrangian.c).
+ * NaN when the Legendre transform cannot be inverted there. */
+double gm_lagrangian_energy(const gm_problem *problem, const double *y);
 
 /* ---- evaluations through the problem's kind (src/ode/evaluate.c) ------------------------ */
 /* Each counts itself in it->stats and, on a callback failure, writes it->errmsg (naming the
  * callback, its return value and t) and returns GM_ECALLBACK. */
 
-/* First-order right-hand side f(t, y); for Hamiltonian kinds f = (∇_p H, −∇_q H). */
+/* First-order right-hand side f(t, y); for Hamiltonian kinds f = (∇_p H, −∇_q H), for Poisson
+ * f = S(y)∇H(y). */
 gm_status gm_eval_rhs(gm_integrator *it, double t, const double *y, double *f);
 /* ∂f/∂y (n×n row-major), analytic when the problem has it, else central differences. */
 gm_status gm_eval_rhs_jacobian(gm_integrator *it, double t, const double *y, double *jac);

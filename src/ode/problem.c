@@ -11,6 +11,10 @@ const char *gm_problem_kind_name(gm_problem_kind kind) {
       return "hamiltonian";
     case GM_PROBLEM_SEPARABLE:
       return "separable";
+    case GM_PROBLEM_POISSON:
+      return "poisson";
+    case GM_PROBLEM_LAGRANGIAN:
+      return "lagrangian";
   }
   return "unknown";
 }
@@ -19,9 +23,17 @@ static int is_hamiltonian_kind(gm_problem_kind kind) {
   return kind == GM_PROBLEM_HAMILTONIAN || kind == GM_PROBLEM_SEPARABLE;
 }
 
+int gm_problem_kind_has_momenta(gm_problem_kind kind) {
+  return is_hamiltonian_kind(kind) || kind == GM_PROBLEM_LAGRANGIAN;
+}
+
+int gm_problem_has_momenta(const gm_problem *problem) {
+  return problem != NULL && gm_problem_kind_has_momenta(problem->kind);
+}
+
 size_t gm_problem_state_size(const gm_problem *problem) {
   if (problem == NULL) return 0;
-  return is_hamiltonian_kind(problem->kind) ? 2 * problem->dim : problem->dim;
+  return gm_problem_has_momenta(problem) ? 2 * problem->dim : problem->dim;
 }
 
 #define REQUIRE(field)                                                                      \
@@ -49,6 +61,24 @@ gm_status gm_problem_validate(const gm_problem *problem, gm_error *err) {
       REQUIRE(kinetic_gradient);
       REQUIRE(potential_gradient);
       break;
+    case GM_PROBLEM_POISSON:
+      REQUIRE(poisson_energy);
+      REQUIRE(poisson_gradient);
+      REQUIRE(structure_matrix);
+      break;
+    case GM_PROBLEM_LAGRANGIAN:
+      REQUIRE(lagrangian);
+      REQUIRE(dl_dq);
+      REQUIRE(dl_dv);
+      if (problem->n_constraints > 0) {
+        REQUIRE(constraint);
+        REQUIRE(constraint_jacobian);
+      }
+      for (size_t k = 0; k < problem->n_symmetries; ++k)
+        if (problem->symmetries == NULL || problem->symmetries[k].generator == NULL ||
+            problem->symmetries[k].name == NULL)
+          return gm_error_set(err, GM_EINVAL, "symmetry %zu has no name or no generator", k);
+      break;
     default:
       return gm_error_set(err, GM_EINVAL, "unknown problem kind %d", (int)problem->kind);
   }
@@ -61,11 +91,15 @@ gm_status gm_problem_validate(const gm_problem *problem, gm_error *err) {
 }
 
 int gm_problem_has_energy(const gm_problem *problem) {
-  return problem != NULL && is_hamiltonian_kind(problem->kind);
+  return problem != NULL && (is_hamiltonian_kind(problem->kind) ||
+                             problem->kind == GM_PROBLEM_POISSON ||
+                             problem->kind == GM_PROBLEM_LAGRANGIAN);
 }
 
 double gm_problem_energy(const gm_problem *problem, const double *y) {
   if (!gm_problem_has_energy(problem)) return NAN;
+  if (problem->kind == GM_PROBLEM_POISSON) return problem->poisson_energy(problem->ctx, y);
+  if (problem->kind == GM_PROBLEM_LAGRANGIAN) return gm_lagrangian_energy(problem, y);
   const double *q = y, *p = y + problem->dim;
   if (problem->kind == GM_PROBLEM_SEPARABLE)
     return problem->kinetic(problem->ctx, p) + problem->potential(problem->ctx, q);
@@ -80,6 +114,9 @@ int gm_problem_has_jacobian(const gm_problem *problem) {
       return problem->hamiltonian_hessian != NULL;
     case GM_PROBLEM_SEPARABLE:
       return problem->kinetic_hessian != NULL && problem->potential_hessian != NULL;
+    case GM_PROBLEM_POISSON:     /* ∂(S∇H)/∂y involves ∂S/∂y: differences */
+    case GM_PROBLEM_LAGRANGIAN:  /* not a first-order system for Runge–Kutta methods */
+      return 0;
   }
   return 0;
 }

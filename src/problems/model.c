@@ -112,7 +112,7 @@ static int parse_initial_name(const char *name, char *prefix, size_t *index) {
 /* "kepler has no parameter 'mass' (parameters: e, q1.., p1..)" */
 static gm_status unknown_parameter(gm_model *m, const char *name) {
   const gm_model_info *info = &m->def->info;
-  int hamiltonian = info->kind != GM_PROBLEM_FIRST_ORDER;
+  int hamiltonian = gm_problem_kind_has_momenta(info->kind);
   char known[160] = "";
   size_t len = 0;
   for (size_t i = 0; i < info->n_params && len < sizeof known; ++i) {
@@ -142,7 +142,7 @@ gm_status gm_model_set(gm_model *m, const char *name, double value) {
     }
   char prefix;
   size_t index;
-  int hamiltonian = info->kind != GM_PROBLEM_FIRST_ORDER;
+  int hamiltonian = gm_problem_kind_has_momenta(info->kind);
   if (parse_initial_name(name, &prefix, &index) && (prefix == 'y') != hamiltonian) {
     initial_override *grown = realloc(m->overrides, (m->n_overrides + 1) * sizeof *grown);
     if (grown == NULL) return GM_ENOMEM;
