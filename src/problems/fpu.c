@@ -185,10 +185,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   for (size_t j = 0; j < l; ++j)
     f->invariants[j] = (gm_invariant){spring_names[j], energy_of_spring[j]};
   f->invariants[l] = (gm_invariant){"I", total_oscillatory_energy};
-  pb->kinetic = gm_free_kinetic;
-  pb->kinetic_gradient = gm_free_kinetic_gradient;
-  pb->kinetic_hessian = gm_free_kinetic_hessian;
-  pb->kinetic_is_quadratic = 1;
+  gm_free_kinetic_setup(pb);
   pb->potential = potential;
   pb->potential_gradient = potential_gradient;
   pb->potential_hessian = potential_hessian;

@@ -35,10 +35,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   (void)errmsg;
   (void)cap;
   *(henon_heiles *)ctx = (henon_heiles){2, params[0]};
-  pb->kinetic = gm_free_kinetic;
-  pb->kinetic_gradient = gm_free_kinetic_gradient;
-  pb->kinetic_hessian = gm_free_kinetic_hessian;
-  pb->kinetic_is_quadratic = 1;
+  gm_free_kinetic_setup(pb);
   pb->potential = potential;
   pb->potential_gradient = potential_gradient;
   pb->potential_hessian = potential_hessian;

@@ -28,7 +28,9 @@ typedef struct gm_model_def {
 } gm_model_def;
 
 /* Free-particle kinetic energy T(p) = ½|p|² with unit masses, shared by several problems.
- * Their contexts must begin with the number of degrees of freedom (a size_t). */
+ * Their contexts must begin with the number of degrees of freedom (a size_t).
+ * gm_free_kinetic_setup sets the three callbacks and kinetic_is_quadratic. */
+void gm_free_kinetic_setup(gm_problem *pb);
 double gm_free_kinetic(void *ctx, const double *p);
 int gm_free_kinetic_gradient(void *ctx, const double *p, double *out);
 int gm_free_kinetic_hessian(void *ctx, const double *p, double *hessian);

@@ -87,10 +87,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   if (!(e >= 0.0 && e < 1.0))
     return gm_fail(errmsg, cap, GM_EINVAL, "kepler: eccentricity e must be in [0, 1), got %g", e);
   *k = (kepler){2, e};
-  pb->kinetic = gm_free_kinetic;
-  pb->kinetic_gradient = gm_free_kinetic_gradient;
-  pb->kinetic_hessian = gm_free_kinetic_hessian;
-  pb->kinetic_is_quadratic = 1;
+  gm_free_kinetic_setup(pb);
   pb->potential = potential;
   pb->potential_gradient = potential_gradient;
   pb->potential_hessian = potential_hessian;

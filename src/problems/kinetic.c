@@ -23,3 +23,10 @@ int gm_free_kinetic_hessian(void *ctx, const double *p, double *hessian) {
   for (size_t i = 0; i < d; ++i) hessian[i * d + i] = 1.0;
   return 0;
 }
+
+void gm_free_kinetic_setup(gm_problem *pb) {
+  pb->kinetic = gm_free_kinetic;
+  pb->kinetic_gradient = gm_free_kinetic_gradient;
+  pb->kinetic_hessian = gm_free_kinetic_hessian;
+  pb->kinetic_is_quadratic = 1;
+}

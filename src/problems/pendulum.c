@@ -86,10 +86,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   if (!(params[0] > 0.0))
     return gm_fail(errmsg, cap, GM_EINVAL, "pendulum: k must be positive, got %g", params[0]);
   *pd = (pendulum){1, params[0], 0.5 * GM_PI};
-  pb->kinetic = gm_free_kinetic;
-  pb->kinetic_gradient = gm_free_kinetic_gradient;
-  pb->kinetic_hessian = gm_free_kinetic_hessian;
-  pb->kinetic_is_quadratic = 1;
+  gm_free_kinetic_setup(pb);
   pb->potential = potential;
   pb->potential_gradient = potential_gradient;
   pb->potential_hessian = potential_hessian;
