@@ -7,7 +7,7 @@ CMAKE_FLAGS ?=
 CONFIGURE = cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX=$(PREFIX) \
             -DGM_WERROR=$(WERROR) $(CMAKE_FLAGS)
 
-.PHONY: all deps build test test-sanitize demo bench examples install clean
+.PHONY: all deps build test test-sanitize demo bench examples install clean fuzz
 
 all: build
 
@@ -35,8 +35,20 @@ bench: build
 examples: build
 	@for e in $(BUILD)/example_*; do echo "== $$e"; ./$$e || exit 1; done
 
+# Fuzz the mesh readers with libFuzzer (clang), seeded with tests/data; FUZZ_TIME seconds.
+FUZZ_TIME ?= 60
+fuzz:
+	cmake -S . -B $(BUILD)-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=Debug -DGM_FUZZ=ON \
+	  -DGM_BUILD_TESTS=OFF > /dev/null
+	cmake --build $(BUILD)-fuzz -j $(JOBS) --target fuzz_mesh_readers
+	@mkdir -p $(BUILD)-fuzz/corpus
+	@for f in tests/data/*.msh; do { printf '\000'; cat $$f; } > $(BUILD)-fuzz/corpus/$$(basename $$f); done
+	@printf '\001OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > $(BUILD)-fuzz/corpus/tri.off
+	$(BUILD)-fuzz/fuzz_mesh_readers -max_total_time=$(FUZZ_TIME) -max_len=65536 \
+	  -print_final_stats=1 -artifact_prefix=$(BUILD)-fuzz/ $(BUILD)-fuzz/corpus
+
 install: build
 	cmake --install $(BUILD)
 
 clean:
-	rm -rf $(BUILD) $(BUILD)-sanitize demo-output
+	rm -rf $(BUILD) $(BUILD)-sanitize $(BUILD)-fuzz demo-output

@@ -73,6 +73,69 @@ gm_status gm_mesh_torus(double R, double r, size_t n_major, size_t n_minor, gm_m
                         gm_error *err);
 
 
+/* ---- files -------------------------------------------------------------------------------- */
+
+/* Read a mesh by extension: .msh (Gmsh ASCII 2.2 or 4.1) or .off. The cells are the highest-
+ * dimensional linear simplices in the file (Gmsh points and lower-dimensional elements are
+ * skipped, cell_tags get the Gmsh physical tag); nodes no cell uses are dropped; N is the cell
+ * dimension raised to cover every non-zero coordinate. Bad files are GM_EINVAL (GM_EDOMAIN for a
+ * non-finite coordinate, GM_EIO when the file cannot be read) with a message "FILE: line L:
+ * what": truncated sections, wrong counts, node indices out of range or undefined, unknown or
+ * non-simplicial element types, binary files. Counts are checked against the file size before
+ * any allocation. *out is owned by the caller. */
+gm_status gm_mesh_read(const char *path, gm_mesh **out, gm_error *err);
+gm_status gm_mesh_read_msh(const char *path, gm_mesh **out, gm_error *err);
+gm_status gm_mesh_read_off(const char *path, gm_mesh **out, gm_error *err);
+/* The same parsers on a buffer of `size` bytes (need not be NUL-terminated); messages start
+ * with "line L:". */
+gm_status gm_mesh_parse_msh(const char *data, size_t size, gm_mesh **out, gm_error *err);
+gm_status gm_mesh_parse_off(const char *data, size_t size, gm_mesh **out, gm_error *err);
+/* Write a triangle mesh (dim 2, N <= 3) as OFF (cells as given, coordinates %.17g). */
+gm_status gm_mesh_write_off(const gm_mesh *mesh, const char *path, gm_error *err);
+
+/* A field for gm_vtu_write: n_components = 1 (a cochain: one value per `degree`-simplex) or 3
+ * (a vector per simplex, e.g. gm_dec_sharp at vertices); values borrowed. */
+typedef struct gm_vtu_field {
+  const char *name;   /* no XML special characters */
+  size_t degree;      /* 0 = vertices (PointData) .. n = top simplices */
+  size_t n_components;
+  const double *values;
+} gm_vtu_field;
+
+/* Write the complex as a ParaView .vtu file (XML, ASCII): points, top simplices, and the
+ * k-simplices of every degree 0 < k < n that carries a field (as VTK lines / triangles); degree
+ * 0 fields are PointData, the others CellData over all cells with NaN on cells of another degree,
+ * plus an Int32 CellData "degree". */
+gm_status gm_vtu_write(const char *path, const gm_complex *cx, size_t n_fields,
+                       const gm_vtu_field *fields, gm_error *err);
+
+/* ---- quality report ------------------------------------------------------------------------- */
+
+typedef struct gm_mesh_report {
+  size_t dim, N;
+  size_t count[GM_DEC_MAX_DIM + 1];          /* k-simplices (only vertices and cells when the
+                                                complex could not be built) */
+  size_t boundary_count[GM_DEC_MAX_DIM + 1]; /* k-simplices on the boundary */
+  long euler_characteristic;
+  int betti_known;                           /* gm_complex_betti_numbers succeeded */
+  size_t betti[GM_DEC_MAX_DIM + 1];
+  size_t non_manifold;     /* (n−1)-faces shared by more than two cells */
+  size_t reoriented;       /* cells whose vertex order was flipped to orient consistently */
+  size_t degenerate;       /* |σ| <= 1e-12 (longest edge)^n */
+  size_t inverted;         /* N == n: negative volume after orientation */
+  size_t not_well_centred; /* circumcenter not strictly inside the cell */
+  size_t negative_duals[GM_DEC_MAX_DIM + 1]; /* k-simplices with dual volume <= 0 */
+  double star_min[GM_DEC_MAX_DIM + 1], star_max[GM_DEC_MAX_DIM + 1]; /* ⋆_k entries */
+  double min_volume, max_volume, shortest_edge, longest_edge;
+  int complex_ok, geometry_ok;          /* 0: the reason is in the message below */
+  char complex_error[GM_ERRMSG_SIZE];   /* e.g. non-manifold, not orientable, index out of range */
+  char geometry_error[GM_ERRMSG_SIZE];  /* e.g. a degenerate cell */
+} gm_mesh_report;
+
+/* Fill the report. A mesh that is not a valid complex is not an error here: complex_ok = 0 and
+ * complex_error says why (and the counts that need no complex are still filled). GM_ENOMEM only. */
+gm_status gm_mesh_quality(const gm_mesh *mesh, gm_mesh_report *report, gm_error *err);
+
 /* ---- Poisson check ------------------------------------------------------------------------ */
 
 typedef struct gm_poisson_report {

@@ -12,7 +12,7 @@
 #define CLI_EXIT_USAGE 2
 #define CLI_HELP (-1) /* the parser saw --help: print the command's usage, exit 0 */
 
-/* ---- commands (list.c, run.c, order.c, demo.c) ----------------------------------------- */
+/* ---- commands (list.c, run.c, order.c, demo.c, wp.c) -------------------------------------- */
 typedef struct cli_command {
   const char *name;
   const char *summary;
@@ -21,7 +21,7 @@ typedef struct cli_command {
 } cli_command;
 
 extern const cli_command cli_list_command, cli_run_command, cli_order_command,
-    cli_demo_command;
+    cli_demo_command, cli_wp_command, cli_mesh_command, cli_mimetic_command;
 
 /* "geomint COMMAND: message" on stderr, one line. */
 #if defined(__GNUC__)
@@ -144,5 +144,19 @@ int cli_plot_check_output(const char *command, const char *png_path);
  * Returns an exit status; prints the reason on failure. */
 int cli_plot_energy_error(const char *command, const char *png_path, const char *title,
                           const cli_plot_series *series, size_t n_series);
+
+/* One line of points (x[i], y[i]), i < n; both arrays borrowed. */
+typedef struct cli_xy_series {
+  const char *title;
+  size_t n;
+  const double *x, *y;
+} cli_xy_series;
+
+/* Draw the series as lines with points on log-log axes into png_path (title and labels are
+ * plain text); points that are not positive and finite are left out. Returns an exit status;
+ * prints the reason on failure. */
+int cli_plot_loglog(const char *command, const char *png_path, const char *title,
+                    const char *xlabel, const char *ylabel, const cli_xy_series *series,
+                    size_t n_series);
 
 #endif

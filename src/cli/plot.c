@@ -1,4 +1,6 @@
-/* Plots of the relative energy error against time, drawn by gnuplot through a pipe. */
+/* Plots drawn by gnuplot through a pipe: the relative energy error against time (run, demo),
+ * and log-log lines of y against x (wp: error against force evaluations). */
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,8 +38,8 @@ static void put_quoted(FILE *f, const char *s) {
   fputc('\'', f);
 }
 
-static void write_script(FILE *g, const char *png_path, const char *title,
-                         const cli_plot_series *series, size_t n_series) {
+/* The PNG terminal, the output file and the title. */
+static void write_preamble(FILE *g, const char *png_path, const char *title) {
   fputs("if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
         "  set terminal pngcairo size 960,600 enhanced font 'sans,10'\n"
         "} else {\n"
@@ -48,8 +50,21 @@ static void write_script(FILE *g, const char *png_path, const char *title,
   put_quoted(g, png_path);
   fputs("\nset title ", g);
   put_quoted(g, title);
-  fputs(" noenhanced\n"
-        "set datafile separator ','\n"
+  fputs(" noenhanced\n", g);
+}
+
+typedef struct energy_plot {
+  const char *title;
+  const cli_plot_series *series;
+  size_t n_series;
+} energy_plot;
+
+static void write_energy_script(FILE *g, const char *png_path, const void *ctx) {
+  const energy_plot *e = ctx;
+  const cli_plot_series *series = e->series;
+  size_t n_series = e->n_series;
+  write_preamble(g, png_path, e->title);
+  fputs("set datafile separator ','\n"
         "set logscale y\n"
         "set autoscale xfix\n"
         "set format y '10^{%L}'\n"
@@ -102,8 +117,11 @@ int cli_plot_check_output(const char *command, const char *png_path) {
   return CLI_EXIT_FAILURE;
 }
 
-int cli_plot_energy_error(const char *command, const char *png_path, const char *title,
-                          const cli_plot_series *series, size_t n_series) {
+typedef void (*script_writer)(FILE *g, const char *png_path, const void *ctx);
+
+/* Pipe the script into gnuplot and check that it wrote png_path; returns an exit status. */
+static int run_gnuplot(const char *command, const char *png_path, script_writer write_script,
+                       const void *ctx) {
   if (!cli_gnuplot_available()) {
     cli_error(command, "cannot draw %s: gnuplot is not installed (or not on PATH)", png_path);
     return CLI_EXIT_FAILURE;
@@ -123,7 +141,7 @@ int cli_plot_energy_error(const char *command, const char *png_path, const char 
   FILE *g = popen(cmd, "w");
   int status = -1;
   if (g != NULL) {
-    write_script(g, png_path, title, series, n_series);
+    write_script(g, png_path, ctx);
     status = pclose(g);
   }
   char reason[256];
@@ -141,4 +159,74 @@ int cli_plot_energy_error(const char *command, const char *png_path, const char 
     return CLI_EXIT_FAILURE;
   }
   return CLI_EXIT_OK;
+}
+
+int cli_plot_energy_error(const char *command, const char *png_path, const char *title,
+                          const cli_plot_series *series, size_t n_series) {
+  energy_plot e = {title, series, n_series};
+  return run_gnuplot(command, png_path, write_energy_script, &e);
+}
+
+/* Twelve colours that stay distinct next to each other on white. */
+static const char *const line_colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                                          "#9467bd", "#8c564b", "#e377c2", "#000000",
+                                          "#17becf", "#bcbd22", "#7f7f7f", "#00008b"};
+#define N_LINE_COLORS (sizeof line_colors / sizeof line_colors[0])
+
+typedef struct loglog_plot {
+  const char *title, *xlabel, *ylabel;
+  const cli_xy_series *series;
+  size_t n_series;
+} loglog_plot;
+
+/* Points with a positive finite x and y: the others have no place on log axes. */
+static int loggable(double x, double y) {
+  return isfinite(x) && isfinite(y) && x > 0.0 && y > 0.0;
+}
+
+static void write_loglog_script(FILE *g, const char *png_path, const void *ctx) {
+  const loglog_plot *l = ctx;
+  write_preamble(g, png_path, l->title);
+  fputs("set logscale xy\n"
+        "set format x '10^{%L}'\n"
+        "set format y '10^{%L}'\n"
+        "set grid xtics ytics mxtics mytics lw 0.5, lw 0.25\n"
+        "set key inside right top noenhanced box opaque\n"
+        "set xlabel ",
+        g);
+  put_quoted(g, l->xlabel);
+  fputs(" noenhanced\nset ylabel ", g);
+  put_quoted(g, l->ylabel);
+  fputs(" noenhanced\nplot ", g);
+  /* inline data ('-'), one block per series that has a point to draw */
+  size_t drawn = 0;
+  for (size_t k = 0; k < l->n_series; ++k) {
+    size_t n_points = 0;
+    for (size_t i = 0; i < l->series[k].n; ++i)
+      n_points += loggable(l->series[k].x[i], l->series[k].y[i]);
+    if (n_points == 0) continue;
+    if (drawn++ > 0) fputs(", \\\n     ", g);
+    fprintf(g, "'-' using 1:2 with linespoints lw 1.5 lc rgb '%s' pt %zu ps 1.1 title ",
+            line_colors[k % N_LINE_COLORS], k % 13 + 1);
+    put_quoted(g, l->series[k].title);
+  }
+  if (drawn == 0) fputs("1/0 notitle", g);
+  fputc('\n', g);
+  for (size_t k = 0; k < l->n_series; ++k) {
+    size_t n_points = 0;
+    for (size_t i = 0; i < l->series[k].n; ++i)
+      if (loggable(l->series[k].x[i], l->series[k].y[i])) {
+        fprintf(g, "%.17g %.17g\n", l->series[k].x[i], l->series[k].y[i]);
+        ++n_points;
+      }
+    if (n_points > 0) fputs("e\n", g);
+  }
+  fputs("set output\n", g);
+}
+
+int cli_plot_loglog(const char *command, const char *png_path, const char *title,
+                    const char *xlabel, const char *ylabel, const cli_xy_series *series,
+                    size_t n_series) {
+  loglog_plot l = {title, xlabel, ylabel, series, n_series};
+  return run_gnuplot(command, png_path, write_loglog_script, &l);
 }

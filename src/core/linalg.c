@@ -6,12 +6,13 @@
  * copy that LAPACKE's LAPACK_ROW_MAJOR wrappers allocate on every call: the Newton solver calls
  * these functions inside integration steps, where nothing may be allocated (DESIGN §3).
  *
- * Small systems (n ≤ SMALL_LU, the stage equations of implicit integrators) are factored here
+ * Systems up to n = SMALL_LU (the stage equations of implicit integrators) are factored here
  * instead: row-major Gaussian elimination with partial pivoting (Golub & Van Loan, Matrix
- * Computations, 4th ed. (2013), Algorithm 3.4.1). For these sizes LAPACK's call overhead is most
- * of the cost (measured: a 16×16 factorization and three solves per Gauss-4 step took 3× longer
- * through OpenBLAS). Which path factors a matrix depends only on n, so factors and pivots
- * always meet the matching solve. */
+ * Computations, 4th ed. (2013), Algorithm 3.4.1). At these sizes LAPACK's call overhead and
+ * OpenBLAS's threads are most of the cost (measured: a 16×16 factorization and its solves per
+ * gauss-4 step took 3× longer through OpenBLAS; 5000 factorizations of 144×144 took 3.5 s of
+ * thread start-up and waiting on two cores). Which path factors a matrix depends only on n, so
+ * factors and pivots always meet the matching solve. */
 #include <lapacke.h>
 #include <limits.h>
 #include <math.h>
@@ -41,7 +42,7 @@ static gm_status from_lapack_info(lapack_int info) {
   return GM_ELAPACK;
 }
 
-#define SMALL_LU 48
+#define SMALL_LU 256
 
 /* PA = LU in place (unit lower L below the diagonal); ipiv[k] = row swapped with row k. */
 static gm_status small_lu_factor(size_t n, double *a, int *ipiv) {

@@ -40,8 +40,8 @@ static size_t subface(const gm_complex *cx, size_t d, size_t s, unsigned mask) {
   return s;
 }
 
-/* Face of the top simplex given by mask, with vertices handled directly. */
-static size_t local_face(const gm_complex *cx, size_t d, size_t s, unsigned mask) {
+/* Face of simplex s of dimension d given by mask, with vertices handled directly. */
+size_t gm_local_face(const gm_complex *cx, size_t d, size_t s, unsigned mask) {
   if (__builtin_popcount(mask) == 1) {
     size_t pos = (size_t)__builtin_ctz(mask);
     return cx->simplices[d][s * (d + 1) + pos];
@@ -59,7 +59,7 @@ gm_status gm_complex_local_faces(const gm_complex *cx, size_t top, size_t k, siz
   for (;;) {
     unsigned mask = 0;
     for (size_t i = 0; i <= k; ++i) mask |= 1u << pos[i];
-    indices[q++] = local_face(cx, n, top, mask);
+    indices[q++] = gm_local_face(cx, n, top, mask);
     size_t i = k + 1;
     while (i-- > 0 && pos[i] == n - k + i) {
     }
@@ -210,7 +210,7 @@ gm_status gm_geometry_create(const gm_complex *cx, const gm_geometry_options *op
       gm_local_dual_pieces(N, n, p, g->opt.dual, pieces);
       for (unsigned s = 1; s < full; ++s) {
         size_t k = (size_t)__builtin_popcount(s) - 1;
-        g->dual[k][local_face(cx, n, T, s)] += pieces[s];
+        g->dual[k][gm_local_face(cx, n, T, s)] += pieces[s];
       }
       g->dual[n][T] = 1.0;
     }
@@ -227,7 +227,7 @@ gm_status gm_geometry_create(const gm_complex *cx, const gm_geometry_options *op
       gm_local_dual_pieces(N, n - 1, p, g->opt.dual, pieces);
       for (unsigned s = 1; s < full; ++s) {
         size_t k = (size_t)__builtin_popcount(s) - 1;
-        g->bdual[k][local_face(cx, n - 1, F, s)] += pieces[s];
+        g->bdual[k][gm_local_face(cx, n - 1, F, s)] += pieces[s];
       }
       g->bdual[n - 1][F] = 1.0;
     }

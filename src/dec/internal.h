@@ -48,6 +48,9 @@ void gm_gather_points(const gm_complex *cx, size_t k, const size_t *vertices, do
 /* Index of the local face (bitmask over the top's vertices) within gm_geometry_dual_pieces'
  * ordering, and the number of faces of each size. */
 size_t gm_binomial(size_t n, size_t k);
+/* Global index of the face of simplex s (dimension d >= 1, or any d when mask has one bit) spanned
+ * by the vertex positions in mask (bitmask over the d+1 ascending vertices of s). */
+size_t gm_local_face(const gm_complex *cx, size_t d, size_t s, unsigned mask);
 /* Orientation sign of simplex i of dimension k: +1 for k < n, orient[i] for k == n. */
 int gm_simplex_sign(const gm_complex *cx, size_t k, size_t i);
 

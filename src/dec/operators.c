@@ -107,3 +107,36 @@ gm_status gm_dec_divergence(const gm_geometry *g, gm_csr **out, gm_error *err) {
   if (st == GM_OK) gm_csr_scale(*out, -1.0);
   return st;
 }
+
+/* Seed 000 §3.3.3: the dual boundary of the cell of a boundary k-simplex includes its boundary
+ * dual cell, where ⋆β takes the boundary value flux[σ]; summation by parts then gives eq. 3.8. */
+gm_status gm_dec_codifferential_boundary(const gm_geometry *g, size_t k, const double *beta,
+                                         const double *flux, double *out, gm_error *err) {
+  if (g == NULL || beta == NULL || out == NULL)
+    return gm_error_set(err, GM_EINVAL, "NULL argument");
+  const gm_complex *cx = g->cx;
+  if (k >= cx->n) return gm_error_set(err, GM_EINVAL, "codifferential needs 0 <= k < n");
+  gm_status st = need_nonzero(g, k, err);
+  if (st != GM_OK) return st;
+  const gm_csr *d = cx->d[k];
+  const size_t m = cx->count[k];
+  for (size_t s = 0; s < m; ++s) out[s] = 0.0;
+  for (size_t r = 0; r < d->n_rows; ++r) {
+    double sb = g->star[k + 1][r] * beta[r];
+    for (size_t q = d->row_start[r]; q < d->row_start[r + 1]; ++q) out[d->col[q]] += d->val[q] * sb;
+  }
+  for (size_t s = 0; s < m; ++s) {
+    if (flux != NULL && cx->boundary[k][s]) out[s] -= flux[s];
+    out[s] /= g->star[k][s];
+  }
+  return GM_OK;
+}
+
+double gm_dec_boundary_pairing(const gm_complex *cx, size_t k, const double *alpha,
+                               const double *flux) {
+  if (cx == NULL || alpha == NULL || flux == NULL || k >= cx->n) return 0.0;
+  double sum = 0.0;
+  for (size_t s = 0; s < cx->count[k]; ++s)
+    if (cx->boundary[k][s]) sum += alpha[s] * flux[s];
+  return sum;
+}
