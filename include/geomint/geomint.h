@@ -10,6 +10,8 @@
 #include "geomint/sparse.h"
 #include "geomint/dec.h"
 #include "geomint/mesh.h"
+#include "geomint/mimetic.h"
+#include "geomint/variational.h"
 
 #define GM_VERSION_MAJOR 0
 #define GM_VERSION_MINOR 1

@@ -16,10 +16,15 @@ typedef enum gm_method_family {
   GM_FAMILY_SPLITTING,       /* drift–kick compositions for separable H = T(p) + V(q) */
   GM_FAMILY_IMPLICIT_RK,     /* implicit Runge–Kutta solved by Newton or fixed-point iteration */
   GM_FAMILY_COMPOSITION,     /* Φ_{γ_s h} ∘ … ∘ Φ_{γ_1 h} of a symmetric basic method Φ */
-  GM_FAMILY_PARTITIONED_RK   /* partitioned Runge–Kutta: one tableau for q, one for p */
+  GM_FAMILY_PARTITIONED_RK,  /* partitioned Runge–Kutta: one tableau for q, one for p */
+  GM_FAMILY_MIMETIC,         /* mimetic spectral elements in time (seed 003; geomint/mimetic.h) */
+  GM_FAMILY_DISCRETE_GRADIENT, /* y1 = y0 + h S ∇̄H(y0, y1): energy-preserving, Poisson systems */
+  GM_FAMILY_VARIATIONAL      /* discrete Euler–Lagrange equations of a discrete Lagrangian
+                                (geomint/variational.h) */
 } gm_method_family;
 
-/* "explicit-rk", "splitting", "implicit-rk", "composition", "partitioned-rk" */
+/* "explicit-rk", "splitting", "implicit-rk", "composition", "partitioned-rk", "mimetic",
+ * "discrete-gradient", "variational" */
 const char *gm_method_family_name(gm_method_family family);
 
 enum {

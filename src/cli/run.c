@@ -81,6 +81,9 @@ static int print_json(const char *problem, const gm_scheme *sc, const gm_problem
   for (size_t k = 0; k < pb->n_invariants; ++k)
     cJSON_AddItemToObject(inv, pb->invariants[k].name,
                           cli_json_number(gm_monitor_max_invariant_drift(r->monitor, k)));
+  if (pb->kind == GM_PROBLEM_LAGRANGIAN && pb->n_constraints > 0) /* max |g(q)| at the end */
+    cJSON_AddItemToObject(root, "constraint_residual",
+                          cli_json_number(gm_constraint_residual(pb, r->y_final)));
   cJSON_AddItemToObject(root, "final", final_state(pb, r));
   if (o->out != NULL) {
     cJSON_AddStringToObject(root, "csv", o->out);
@@ -114,6 +117,8 @@ static void print_summary(const char *problem, const gm_scheme *sc, const gm_pro
   for (size_t k = 0; k < pb->n_invariants; ++k)
     printf("%-17s max drift %.3e\n", pb->invariants[k].name,
            gm_monitor_max_invariant_drift(r->monitor, k));
+  if (pb->kind == GM_PROBLEM_LAGRANGIAN && pb->n_constraints > 0)
+    printf("constraint        max |g(q)| = %.3e at the end\n", gm_constraint_residual(pb, r->y_final));
   printf("work              %zu force evaluations, %zu Newton iterations, %.3f s\n",
          r->stats.force_evals, r->stats.newton_iterations, r->wall_s);
   if (r->stats.fd_jacobians > 0)

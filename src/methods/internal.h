@@ -19,6 +19,22 @@ gm_status gm_gauss_tableau(const gm_method *m, gm_tableau *t);
 gm_status gm_lobatto_iiia_iiib_tableau(const gm_method *m, gm_tableau *t);
 extern const gm_method gm_partitioned_rk_methods[];
 extern const size_t gm_n_partitioned_rk_methods;
+/* Mimetic and discrete-gradient rows and steppers (mimetic*.c, discrete_gradient*.c; their
+ * private declarations are in methods/energy.h). */
+extern const gm_method gm_mimetic_methods[];
+extern const size_t gm_n_mimetic_methods;
+extern const gm_method gm_discrete_gradient_methods[];
+extern const size_t gm_n_discrete_gradient_methods;
+extern const gm_stepper gm_mimetic_stepper;
+extern const gm_stepper gm_discrete_gradient_stepper;
+/* Variational rows and steppers (variational*.c; engine in methods/variational_internal.h). */
+extern const gm_method gm_variational_methods[];
+extern const size_t gm_n_variational_methods;
+extern const gm_stepper gm_variational_stepper;
+extern const gm_stepper gm_sem_stepper;
+gm_status gm_vi_gauss_tableau(const gm_method *m, gm_tableau *t);
+gm_status gm_vi_lobatto_tableau(const gm_method *m, gm_tableau *t);
+gm_status gm_vi_alpha_tableau(const gm_method *m, gm_tableau *t);
 
 /* Steppers, one per family. */
 extern const gm_stepper gm_explicit_rk_stepper;

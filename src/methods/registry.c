@@ -14,6 +14,9 @@ static const table_ref tables[] = {
     {gm_implicit_rk_methods, &gm_n_implicit_rk_methods},
     {gm_composition_methods, &gm_n_composition_methods},
     {gm_partitioned_rk_methods, &gm_n_partitioned_rk_methods},
+    {gm_mimetic_methods, &gm_n_mimetic_methods},
+    {gm_discrete_gradient_methods, &gm_n_discrete_gradient_methods},
+    {gm_variational_methods, &gm_n_variational_methods},
 };
 static const size_t n_tables = sizeof tables / sizeof tables[0];
 
@@ -52,6 +55,12 @@ const char *gm_method_family_name(gm_method_family family) {
       return "composition";
     case GM_FAMILY_PARTITIONED_RK:
       return "partitioned-rk";
+    case GM_FAMILY_MIMETIC:
+      return "mimetic";
+    case GM_FAMILY_DISCRETE_GRADIENT:
+      return "discrete-gradient";
+    case GM_FAMILY_VARIATIONAL:
+      return "variational";
   }
   return "unknown";
 }
@@ -75,6 +84,12 @@ const gm_stepper *gm_stepper_for(const gm_method *method, const gm_method *basic
       if (basic == NULL) return NULL;
       return basic->family == GM_FAMILY_SPLITTING ? &gm_splitting_stepper
                                                   : &gm_composition_stepper;
+    case GM_FAMILY_MIMETIC:
+      return &gm_mimetic_stepper;
+    case GM_FAMILY_DISCRETE_GRADIENT:
+      return &gm_discrete_gradient_stepper;
+    case GM_FAMILY_VARIATIONAL: /* symplectic-energy-momentum rows choose their own steps */
+      return (method->flags & GM_ENERGY_PRESERVING) ? &gm_sem_stepper : &gm_variational_stepper;
   }
   return NULL;
 }

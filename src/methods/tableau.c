@@ -34,6 +34,7 @@ gm_status gm_method_tableau(const gm_method *m, gm_tableau **out) {
   switch (m->family) {
     case GM_FAMILY_EXPLICIT_RK:
     case GM_FAMILY_IMPLICIT_RK:
+    case GM_FAMILY_MIMETIC: /* mimetic-canonical-p is a Runge–Kutta method (seed 003 §5.3) */
       ok = (t->a = copy_or_zero(m->a, s * s)) && (t->b = copy_or_zero(m->b, s)) &&
            (t->c = copy_or_zero(m->c, s));
       break;
@@ -44,9 +45,12 @@ gm_status gm_method_tableau(const gm_method *m, gm_tableau **out) {
       ok = (t->gamma = copy_or_zero(m->gamma, s)) != NULL;
       break;
     case GM_FAMILY_PARTITIONED_RK:
+    case GM_FAMILY_VARIATIONAL: /* the equivalent partitioned RK (seed 001 Thm 2.12) */
       ok = (t->a = copy_or_zero(m->a, s * s)) && (t->b = copy_or_zero(m->b, s)) &&
            (t->c = copy_or_zero(m->c, s)) && (t->a_bar = copy_or_zero(NULL, s * s)) &&
            (t->b_bar = copy_or_zero(NULL, s));
+      break;
+    case GM_FAMILY_DISCRETE_GRADIENT: /* no coefficients */
       break;
   }
   if (!ok) {

@@ -109,3 +109,61 @@ gm_status gm_eval_rhs_jacobian(gm_integrator *it, double t, const double *y, dou
   }
   return GM_EINVAL;
 }
+
+/* ---- the Poisson view y' = S(y)∇H(y) (discrete-gradient methods) ----------------------- */
+
+gm_status gm_eval_poisson_energy(gm_integrator *it, double t, const double *y, double *energy) {
+  double e = gm_problem_energy(it->problem, y);
+  if (!isfinite(e))
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
+                   "the energy is %g at t = %.17g", e, t);
+  *energy = e;
+  return GM_OK;
+}
+
+gm_status gm_eval_poisson_gradient(gm_integrator *it, double t, const double *y, double *g) {
+  const gm_problem *pb = it->problem;
+  const size_t d = pb->dim;
+  it->stats.force_evals++;
+  switch (pb->kind) {
+    case GM_PROBLEM_POISSON:
+      CALL(pb->poisson_gradient(pb->ctx, y, g), "poisson_gradient");
+      return GM_OK;
+    case GM_PROBLEM_HAMILTONIAN:
+      CALL(pb->dh_dq(pb->ctx, y, y + d, g), "dh_dq");
+      CALL(pb->dh_dp(pb->ctx, y, y + d, g + d), "dh_dp");
+      return GM_OK;
+    case GM_PROBLEM_SEPARABLE:
+      CALL(pb->potential_gradient(pb->ctx, y, g), "potential_gradient");
+      CALL(pb->kinetic_gradient(pb->ctx, y + d, g + d), "kinetic_gradient");
+      return GM_OK;
+    case GM_PROBLEM_FIRST_ORDER:
+    case GM_PROBLEM_LAGRANGIAN:
+      break;
+  }
+  return gm_fail(it->errmsg, sizeof it->errmsg, GM_EUNSUPPORTED,
+                 "a %s problem has no Poisson structure", gm_problem_kind_name(pb->kind));
+}
+
+int gm_poisson_structure_is_constant(const gm_problem *problem) {
+  return problem->kind == GM_PROBLEM_HAMILTONIAN || problem->kind == GM_PROBLEM_SEPARABLE;
+}
+
+gm_status gm_eval_poisson_structure(gm_integrator *it, double t, const double *y, double *s) {
+  const gm_problem *pb = it->problem;
+  const size_t n = it->n, d = pb->dim;
+  if (pb->kind == GM_PROBLEM_POISSON) {
+    CALL(pb->structure_matrix(pb->ctx, y, s), "structure_matrix");
+    return GM_OK;
+  }
+  if (!gm_poisson_structure_is_constant(pb))
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EUNSUPPORTED,
+                   "a %s problem has no Poisson structure", gm_problem_kind_name(pb->kind));
+  /* q' = ∇_p H, p' = −∇_q H: S = J⁻¹ = [[0, I], [−I, 0]] */
+  memset(s, 0, n * n * sizeof *s);
+  for (size_t i = 0; i < d; ++i) {
+    s[i * n + d + i] = 1.0;
+    s[(d + i) * n + i] = -1.0;
+  }
+  return GM_OK;
+}

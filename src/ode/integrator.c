@@ -259,12 +259,15 @@ gm_status gm_nonfinite_state(gm_integrator *it, size_t component, double t_new) 
 
 /* Advance one step of size h to the time t_new; the state is unchanged on failure. */
 static gm_status advance(gm_integrator *it, double h, double t_new) {
+  it->h_taken = NAN;
   if (!it->compensated) {
     gm_status st = it->stepper->step(it, it->t, h, it->y, it->y_next, NULL);
+    if (st == GM_OK && !isnan(it->h_taken)) t_new = it->t + it->h_taken;
     return st != GM_OK ? st : gm_commit_step(it, t_new);
   }
   gm_status st = it->stepper->step(it, it->t, h, it->y, NULL, it->delta);
   if (st != GM_OK) return st;
+  if (!isnan(it->h_taken)) t_new = it->t + it->h_taken;
   /* Compensated summation, Hairer–Lubich–Wanner GNI (2006) §VIII.5, Algorithm 5.1:
    * the rounding error of y + Δy is carried into the next step. */
   for (size_t i = 0; i < it->n; ++i) {

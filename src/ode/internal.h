@@ -61,6 +61,8 @@ struct gm_integrator {
   double *fd_y, *fd_fp, *fd_fm;
   double *hess;               /* 2d×2d Hessian of H (Hamiltonian kinds with a Hessian) */
   double *structure, *gradient; /* Poisson: S(y) (n×n) and ∇H(y) (n) */
+  double h_taken;             /* a stepper that chooses its own step size (vi-sem-*) writes the
+                                step it took here; NaN: the step asked for */
   char errmsg[GM_ERRMSG_SIZE];
 };
 
@@ -94,6 +96,13 @@ static inline gm_status gm_eval_kinetic_gradient(gm_integrator *it, double t, co
   int rc = pb->kinetic_gradient(pb->ctx, p, g);
   return rc == 0 ? GM_OK : gm_callback_failed(it, "kinetic_gradient", rc, t);
 }
+/* The Poisson view y' = S(y)∇H(y) of Poisson problems and of Hamiltonian kinds (S = J⁻¹,
+ * state (q, p)): the energy (GM_EDOMAIN when not finite), ∇H (counted as a force evaluation)
+ * and S (n×n). Is S constant (Hamiltonian kinds)? */
+gm_status gm_eval_poisson_energy(gm_integrator *it, double t, const double *y, double *energy);
+gm_status gm_eval_poisson_gradient(gm_integrator *it, double t, const double *y, double *g);
+gm_status gm_eval_poisson_structure(gm_integrator *it, double t, const double *y, double *s);
+int gm_poisson_structure_is_constant(const gm_problem *problem);
 /* Does the problem provide an analytic Jacobian in its kind? */
 int gm_problem_has_jacobian(const gm_problem *problem);
 

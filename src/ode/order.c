@@ -11,28 +11,33 @@
 
 static gm_status integrate_to(const gm_scheme *scheme, const gm_problem *pb, double t0,
                               const double *y0, double t_end, double dt, double *y_end,
-                              gm_error *err) {
+                              double *t_reached, gm_error *err) {
   gm_integrator *it = NULL;
   gm_status st = gm_integrator_create_scheme(scheme, pb, &it, err);
   if (st != GM_OK) return st;
   st = gm_integrator_set_state(it, t0, y0);
   if (st == GM_OK) st = gm_integrator_integrate(it, t_end, dt);
-  if (st == GM_OK)
+  if (st == GM_OK) {
     memcpy(y_end, gm_integrator_state(it), gm_problem_state_size(pb) * sizeof *y_end);
-  else
+    /* t_end exactly, except for methods that choose their own steps (vi-sem-*) */
+    if (t_reached != NULL) *t_reached = gm_integrator_time(it);
+  } else
     gm_error_set(err, st, "%s at dt = %g: %s", scheme->method->name, dt,
                  gm_integrator_errmsg(it));
   gm_integrator_free(it);
   return st;
 }
 
-/* The most accurate explicit method that accepts the problem. */
+/* The most accurate explicit method that accepts the problem; for Lagrangian problems, which
+ * no explicit row integrates, the most accurate fixed-step variational row. */
 static const gm_method *default_reference(const gm_problem *pb) {
   const gm_method *best = NULL;
+  const int lagrangian = pb->kind == GM_PROBLEM_LAGRANGIAN;
   for (size_t i = 0, n = gm_method_count(); i < n; ++i) {
     const gm_method *m = gm_method_at(i);
     gm_integrator *it = NULL;
-    if (!(m->flags & GM_EXPLICIT) || gm_integrator_create(m, pb, &it, NULL) != GM_OK) continue;
+    if (lagrangian ? (m->flags & GM_ENERGY_PRESERVING) != 0 : !(m->flags & GM_EXPLICIT)) continue;
+    if (gm_integrator_create(m, pb, &it, NULL) != GM_OK) continue;
     gm_integrator_free(it);
     if (best == NULL || m->order > best->order) best = m;
   }
@@ -75,13 +80,25 @@ gm_status gm_order_measure(const gm_scheme *scheme, const gm_problem *problem, d
       st = gm_error_set(err, GM_EUNSUPPORTED, "no exact solution and no reference method");
     else
       st = integrate_to(&(gm_scheme){reference, NULL, GM_SOLVER_DEFAULT, 0}, problem, t0, y0,
-                        t_end, dt_min / 64.0, exact, err);
+                        t_end, dt_min / 64.0, exact, NULL, err);
   }
   double scale = fmax(1.0, gm_norm_inf(n, exact));
   for (size_t l = 0; l < n_levels && st == GM_OK; ++l) {
     double dt = dt0 / pow(refinement, (double)l);
-    st = integrate_to(scheme, problem, t0, y0, t_end, dt, y, err);
+    double t_reached = t_end;
+    st = integrate_to(scheme, problem, t0, y0, t_end, dt, y, &t_reached, err);
     if (st != GM_OK) break;
+    if (t_reached != t_end) { /* a method that chose its own steps: compare where it ended */
+      if (problem->exact == NULL) {
+        st = gm_error_set(err, GM_EUNSUPPORTED, "'%s' chooses its own steps: its order needs "
+                          "the problem's exact solution", scheme->method->name);
+        break;
+      }
+      if (problem->exact(problem->ctx, t_reached, exact) != 0) {
+        st = gm_error_set(err, GM_ECALLBACK, "the exact solution failed at t = %g", t_reached);
+        break;
+      }
+    }
     double e = 0.0;
     for (size_t i = 0; i < n; ++i) e = fmax(e, fabs(y[i] - exact[i]));
     out->dts[l] = dt;

@@ -62,5 +62,11 @@ extern const gm_model_def gm_model_outer_solar_system;
 extern const gm_model_def gm_model_n_body;
 extern const gm_model_def gm_model_point_vortices;
 extern const gm_model_def gm_model_fpu;
+/* Lagrangian problems (issue 4) */
+extern const gm_model_def gm_model_spherical_pendulum;
+extern const gm_model_def gm_model_double_spherical_pendulum;
+extern const gm_model_def gm_model_spring_pendulum;
+extern const gm_model_def gm_model_j2_satellite;
+extern const gm_model_def gm_model_damped_oscillator;
 
 #endif

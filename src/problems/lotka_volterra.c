@@ -1,25 +1,41 @@
 /* Lotka–Volterra predator–prey system u' = u(v − 2), v' = v(1 − u), a Poisson system that is
- * not canonical (seed 003 §6.2; Hairer, Lubich & Wanner, GNI (2006), §I.1.1). Its invariant
- * I = ln u − u + 2 ln v − v is kept by the exact flow; start (3, 3) as in seed 003. */
+ * not canonical (seed 003 §6.2; Hairer, Lubich & Wanner, GNI (2006), §I.1.1 and §VII.2), given
+ * as y' = S(y)∇H(y). Its invariant I = ln u − u + 2 ln v − v = −H is kept by the exact flow;
+ * start (3, 3) as in seed 003. */
 #include <math.h>
 
 #include "problems/internal.h"
 
-static int rhs(void *ctx, double t, const double *y, double *f) {
+/* H(y) = −(ln u − u + 2 ln v − v), ∇H = (1 − 1/u, 1 − 2/v), S(y) = uv [[0, 1], [−1, 0]]:
+ * S∇H = (uv(1 − 2/v), −uv(1 − 1/u)) = (u(v − 2), v(1 − u)) (GNI (2006),
+ * §VII.2). H = −I is conserved with the invariant. */
+static double energy(void *ctx, const double *y) {
   (void)ctx;
-  (void)t;
-  f[0] = y[0] * (y[1] - 2.0);
-  f[1] = y[1] * (1.0 - y[0]);
+  return -(log(y[0]) - y[0] + 2.0 * log(y[1]) - y[1]);
+}
+
+static int gradient(void *ctx, const double *y, double *g) {
+  (void)ctx;
+  g[0] = 1.0 - 1.0 / y[0];
+  g[1] = 1.0 - 2.0 / y[1];
   return 0;
 }
 
-static int rhs_jacobian(void *ctx, double t, const double *y, double *jac) {
+static int hessian(void *ctx, const double *y, double *h) {
   (void)ctx;
-  (void)t;
-  jac[0] = y[1] - 2.0;
-  jac[1] = y[0];
-  jac[2] = -y[1];
-  jac[3] = 1.0 - y[0];
+  h[0] = 1.0 / (y[0] * y[0]);
+  h[1] = 0.0;
+  h[2] = 0.0;
+  h[3] = 2.0 / (y[1] * y[1]);
+  return 0;
+}
+
+static int structure(void *ctx, const double *y, double *s) {
+  (void)ctx;
+  s[0] = 0.0;
+  s[1] = y[0] * y[1];
+  s[2] = -y[0] * y[1];
+  s[3] = 0.0;
   return 0;
 }
 
@@ -38,8 +54,10 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   (void)t0;
   (void)errmsg;
   (void)cap;
-  pb->rhs = rhs;
-  pb->rhs_jacobian = rhs_jacobian;
+  pb->poisson_energy = energy;
+  pb->poisson_gradient = gradient;
+  pb->poisson_hessian = hessian;
+  pb->structure_matrix = structure;
   pb->n_invariants = 1;
   pb->invariants = invariants;
   y0[0] = 3.0;
@@ -49,6 +67,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
 
 const gm_model_def gm_model_lotka_volterra = {
     {"lotka-volterra",
-     "predator-prey u' = u(v - 2), v' = v(1 - u), y = (3, 3); invariant ln u - u + 2 ln v - v",
-     GM_PROBLEM_FIRST_ORDER, 2, 0, NULL, 1, invariant_names, 0},
+     "predator-prey u' = u(v - 2), v' = v(1 - u) as a Poisson system: S = uv J, "
+     "H = -(ln u - u + 2 ln v - v); y = (3, 3)",
+     GM_PROBLEM_POISSON, 2, 0, NULL, 1, invariant_names, 0},
     sizeof(size_t), NULL, setup, NULL, NULL};

@@ -17,6 +17,11 @@ static const gm_model_def *const defs[] = {
     &gm_model_n_body,
     &gm_model_point_vortices,
     &gm_model_fpu,
+    &gm_model_spherical_pendulum,
+    &gm_model_double_spherical_pendulum,
+    &gm_model_spring_pendulum,
+    &gm_model_j2_satellite,
+    &gm_model_damped_oscillator,
 };
 static const size_t n_defs = sizeof defs / sizeof defs[0];
 

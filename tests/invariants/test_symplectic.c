@@ -55,7 +55,8 @@ static void check_problem(const char *name, double h) {
     double defect = symplecticity_defect(m, tm.problem, y, h);
     if (m->flags & GM_SYMPLECTIC)
       cr_expect_leq(defect, 1e-10, "%s on %s: |JᵀΩJ − Ω| = %.2e", m->name, name, defect);
-    else
+    else if (m->order < 6) /* a method of order r is symplectic up to O(h^{r+1}): for r ≥ 6
+                              (mimetic-galerkin-p, p ≥ 3) that is below detection here */
       cr_expect_gt(defect, 1e-8, "%s on %s is not symplectic, yet |JᵀΩJ − Ω| = %.2e", m->name,
                    name, defect);
   }

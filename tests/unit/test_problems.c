@@ -141,8 +141,11 @@ static void check_energy_derivatives(const char *name, const char *settings) {
 Test(problems, gradients_and_hessians_match_differences) {
   for (size_t k = 0; k < gm_model_count(); ++k) {
     const gm_model_info *info = gm_model_info_at(k);
-    if (info->kind == GM_PROBLEM_FIRST_ORDER) continue;
-    check_energy_derivatives(info->name, NULL);
+    if (info->kind == GM_PROBLEM_FIRST_ORDER || info->kind == GM_PROBLEM_POISSON ||
+        info->kind == GM_PROBLEM_LAGRANGIAN)
+      continue;
+    check_energy_derivatives(info->name, NULL); /* Poisson (lotka-volterra): its own test;
+                                                   Lagrangians: test_problems_lagrangian.c */
   }
 }
 
@@ -209,7 +212,9 @@ Test(problems, exact_solutions_solve_the_equations) {
     built_model bm = build_model(info->name, NULL);
     cr_expect_eq(bm.pb->exact != NULL, info->has_exact, "%s", info->name);
     free_model(&bm);
-    if (info->has_exact) check_exact_solution(info->name, NULL);
+    /* Lagrangian problems' exact solutions: tests/unit/test_problems_lagrangian.c */
+    if (info->has_exact && info->kind != GM_PROBLEM_LAGRANGIAN)
+      check_exact_solution(info->name, NULL);
   }
   /* rings of other sizes and of negative circulation turn the other way round */
   check_exact_solution("point-vortices", "n=5,gamma=-2");
@@ -295,10 +300,19 @@ Test(problems, first_order_jacobians_match_differences) {
 }
 
 /* Lotka–Volterra's invariant is kept by an accurate integration (RK4, small steps) and
- * splitting methods refuse the problem (it is not separable Hamiltonian). */
+ * splitting methods refuse the problem (it is not separable Hamiltonian). As a Poisson system,
+ * S∇H is the predator–prey field u' = u(v − 2), v' = v(1 − u), and H = −invariant. */
 Test(problems, lotka_volterra_invariant_and_kind) {
   test_model tm = test_model_make("lotka-volterra");
-  cr_expect_eq(tm.problem->kind, GM_PROBLEM_FIRST_ORDER);
+  cr_expect_eq(tm.problem->kind, GM_PROBLEM_POISSON);
+  const double y[2] = {0.7, 2.9};
+  double g[2], s[4];
+  cr_assert_eq(tm.problem->poisson_gradient(tm.problem->ctx, y, g), 0);
+  cr_assert_eq(tm.problem->structure_matrix(tm.problem->ctx, y, s), 0);
+  cr_expect_leq(fabs(s[0] * g[0] + s[1] * g[1] - y[0] * (y[1] - 2.0)), 1e-15);
+  cr_expect_leq(fabs(s[2] * g[0] + s[3] * g[1] - y[1] * (1.0 - y[0])), 1e-15);
+  cr_expect_leq(fabs(tm.problem->poisson_energy(tm.problem->ctx, y) +
+                     tm.problem->invariants[0].value(tm.problem->ctx, y)), 1e-15);
   cr_expect(!test_accepts(gm_method_find("verlet"), tm.problem));
   gm_integrator *it = test_integrator(gm_method_find("rk4"), tm.problem, 0.0, tm.y0);
   gm_monitor *mon = NULL;
