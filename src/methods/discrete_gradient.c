@@ -280,16 +280,7 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
     for (size_t i = 0; i < n; ++i) w->delta[i] *= h;
   }
   w->h_prev = 0.0;
-  if ((st = solve(w)) != GM_OK) {
-    if (st == GM_ENOCONV || st == GM_ESINGULAR || st == GM_EDOMAIN) {
-      it->stats.newton_failures++;
-      char why[GM_ERRMSG_SIZE];
-      memcpy(why, it->errmsg, sizeof why);
-      gm_fail(it->errmsg, sizeof it->errmsg, st, "%s: %s in the step from t = %.17g (h = %g)",
-              it->method->name, why, t, h);
-    }
-    return st;
-  }
+  if ((st = solve(w)) != GM_OK) return gm_stage_solve_failed(it, st, t, h);
   memcpy(w->delta_prev, w->delta, n * sizeof *w->delta);
   w->h_prev = h;
   for (size_t i = 0; i < n; ++i) {

@@ -321,27 +321,13 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
   w->h = h;
   w->callback_status = GM_OK;
   /* starting values: the previous collocation polynomial, extrapolated */
-  memset(w->z, 0, sn * sizeof *w->z);
-  if (w->h_prev == h && w->d != NULL) {
-    const size_t m = sn / s;
-    for (size_t i = 0; i < s; ++i)
-      for (size_t j = 0; j < s; ++j) {
-        double e = w->extrap[i * s + j];
-        for (size_t k = 0; k < m; ++k) w->z[i * m + k] += e * w->z_prev[j * m + k];
-      }
-  }
+  if (w->h_prev == h && w->d != NULL)
+    gm_stage_extrapolate(s, sn / s, w->extrap, w->z_prev, w->z);
+  else
+    memset(w->z, 0, sn * sizeof *w->z);
   w->h_prev = 0.0;
   gm_status st = positions ? step_positions(w, y_new, delta) : solve(w);
-  if (st != GM_OK) {
-    if (st == GM_ENOCONV || st == GM_ESINGULAR || st == GM_EDOMAIN) {
-      it->stats.newton_failures++;
-      char why[GM_ERRMSG_SIZE];
-      memcpy(why, it->errmsg, sizeof why);
-      gm_fail(it->errmsg, sizeof it->errmsg, st, "%s: %s in the step from t = %.17g (h = %g)",
-              it->method->name, why, t, h);
-    }
-    return st;
-  }
+  if (st != GM_OK) return gm_stage_solve_failed(it, st, t, h);
   memcpy(w->z_prev, w->z, sn * sizeof *w->z);
   w->h_prev = h;
   if (positions) return GM_OK;

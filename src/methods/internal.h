@@ -36,6 +36,14 @@ gm_status gm_vi_gauss_tableau(const gm_method *m, gm_tableau *t);
 gm_status gm_vi_lobatto_tableau(const gm_method *m, gm_tableau *t);
 gm_status gm_vi_alpha_tableau(const gm_method *m, gm_tableau *t);
 
+/* Shared by the implicit steppers (solve_support.c). */
+/* A failed solve of the stage equations: count it (convergence failures only) and prefix the
+ * reason already in it->errmsg with the method, t and h. Returns status. */
+gm_status gm_stage_solve_failed(gm_integrator *it, gm_status status, double t, double h);
+/* Starting values z_i = Σ_j e_ij z_prev_j (s blocks of m values): the previous step's
+ * polynomial extrapolated to the new stages. */
+void gm_stage_extrapolate(size_t s, size_t m, const double *e, const double *z_prev, double *z);
+
 /* Steppers, one per family. */
 extern const gm_stepper gm_explicit_rk_stepper;
 extern const gm_stepper gm_splitting_stepper;

@@ -403,25 +403,13 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
   w->t = t;
   w->h = h;
   w->callback_status = GM_OK;
-  memset(w->z, 0, pn * sizeof *w->z);
   if (w->h_prev == h)
-    for (size_t r = 0; r < p; ++r)
-      for (size_t c = 0; c < p; ++c) {
-        const double e = w->extrap[r * p + c];
-        for (size_t i = 0; i < n; ++i) w->z[r * n + i] += e * w->z_prev[c * n + i];
-      }
+    gm_stage_extrapolate(p, n, w->extrap, w->z_prev, w->z);
+  else
+    memset(w->z, 0, pn * sizeof *w->z);
   w->h_prev = 0.0;
   gm_status st = solve(w);
-  if (st != GM_OK) {
-    if (st == GM_ENOCONV || st == GM_ESINGULAR || st == GM_EDOMAIN) {
-      it->stats.newton_failures++;
-      char why[GM_ERRMSG_SIZE];
-      memcpy(why, it->errmsg, sizeof why);
-      gm_fail(it->errmsg, sizeof it->errmsg, st, "%s: %s in the step from t = %.17g (h = %g)",
-              it->method->name, why, t, h);
-    }
-    return st;
-  }
+  if (st != GM_OK) return gm_stage_solve_failed(it, st, t, h);
   memcpy(w->z_prev, w->z, pn * sizeof *w->z);
   w->h_prev = h;
   memcpy(w->z_dense, w->z, pn * sizeof *w->z);

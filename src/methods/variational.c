@@ -168,14 +168,7 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
   if (st == GM_OK) st = gm_vi_momentum_increment(e, w->dp);
   if (st != GM_OK) {
     w->have_prev = 0;
-    if (st != GM_ECALLBACK) {
-      it->stats.newton_failures++;
-      char why[GM_ERRMSG_SIZE];
-      memcpy(why, it->errmsg, sizeof why);
-      gm_fail(it->errmsg, sizeof it->errmsg, st, "%s: %s in the step from t = %.17g (h = %g)",
-              it->method->name, why, t, h);
-    }
-    return st;
+    return gm_stage_solve_failed(it, st, t, h);
   }
   const double *dq = e->x + (s - 1) * d;
   for (size_t k = 0; k < d; ++k) {
