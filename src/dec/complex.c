@@ -116,6 +116,31 @@ static gm_status build_faces(gm_complex *cx, size_t k, gm_error *err) {
     }
     begin = end;
   }
+  if (k == cx->n) { /* the cofaces of each facet are its occurrences, in simplex order */
+    cx->cofaces = malloc(2 * (n_unique ? n_unique : 1) * sizeof(size_t));
+    cx->coface_local = malloc(2 * (n_unique ? n_unique : 1));
+    if (!cx->cofaces || !cx->coface_local) {
+      free(key), free(a), free(cnt), free(b);
+      return gm_error_set(err, GM_ENOMEM, "out of memory for %zu faces", n_unique);
+    }
+    for (size_t u = 0; u < n_unique; ++u) {
+      const size_t p0 = b[u], p1 = u + 1 < n_unique ? b[u + 1] : nocc;
+      const size_t s0 = a[p0] / kp;
+      cx->cofaces[2 * u] = s0;
+      cx->coface_local[2 * u] = (unsigned char)(a[p0] - s0 * kp);
+      cx->cofaces[2 * u + 1] = SIZE_MAX;
+      cx->coface_local[2 * u + 1] = 0;
+      if (p1 - p0 == 2) {
+        const size_t s1 = a[p0 + 1] / kp, i1 = a[p0 + 1] - s1 * kp;
+        cx->cofaces[2 * u + 1] = s1;
+        cx->coface_local[2 * u + 1] = (unsigned char)i1;
+        /* the same facet with the same opposite vertex: a duplicated simplex */
+        if (tup[a[p0]] == tup[s1 * kp + i1]) cx->faces_problem = 1;
+      } else if (p1 - p0 > 2) {
+        cx->faces_problem = 1; /* non-manifold */
+      }
+    }
+  }
   free(key);
   free(cnt);
   size_t *faces_tup = malloc((n_unique ? n_unique : 1) * fk * sizeof(size_t));
@@ -156,48 +181,85 @@ static size_t local_index(const gm_complex *cx, size_t top, size_t face) {
 
 /* Cofaces of (n−1)-faces, manifold and duplicate checks, consistent orientation by a breadth
  * first search over the dual graph. */
+/* Orientation from the sign of the volume of every top simplex (N == n): the result of the
+ * breadth first search below whenever every volume is non-zero and the signs are consistent
+ * across every interior face (a consistent orientation of a connected component is unique up to
+ * sign, and the search then picks the sign of positive total volume). 0: use the search. */
+static int orient_by_volume(gm_complex *cx) {
+  const size_t n = cx->n, kp = n + 1, nt = cx->count[n], nf = cx->count[n - 1];
+  int ok = 1;
+  GM_OMP(omp parallel for schedule(static) if (nt > GM_OMP_MIN) reduction(&& : ok))
+  for (size_t t = 0; t < nt; ++t) {
+    double v = signed_volume(cx, cx->simplices[n] + t * kp);
+    cx->orient[t] = (signed char)(v > 0.0 ? 1 : -1);
+    ok = ok && v != 0.0;
+  }
+  if (!ok) return 0;
+  GM_OMP(omp parallel for schedule(static) if (nf > GM_OMP_MIN) reduction(&& : ok))
+  for (size_t f = 0; f < nf; ++f) {
+    const size_t t = cx->cofaces[2 * f], o = cx->cofaces[2 * f + 1];
+    if (o == SIZE_MAX) continue;
+    const unsigned i = cx->coface_local[2 * f], j = cx->coface_local[2 * f + 1];
+    int want = -cx->orient[t] * (((i + j) & 1) ? -1 : 1);
+    ok = ok && cx->orient[o] == want;
+  }
+  return ok;
+}
+
+/* Cofaces of (n−1)-faces, manifold and duplicate checks, consistent orientation by a breadth
+ * first search over the dual graph. */
 static gm_status orient(gm_complex *cx, const signed char *given, gm_error *err) {
   const size_t n = cx->n, kp = n + 1, nt = cx->count[n], nf = cx->count[n - 1];
-  cx->cofaces = malloc(2 * (nf ? nf : 1) * sizeof(size_t));
-  size_t *queue = malloc((nt ? nt : 1) * sizeof(size_t));
-  size_t *comp = malloc((nt ? nt : 1) * sizeof(size_t));
-  if (!cx->cofaces || !queue || !comp) {
-    free(queue), free(comp);
-    return gm_error_set(err, GM_ENOMEM, "out of memory");
-  }
-  for (size_t f = 0; f < 2 * nf; ++f) cx->cofaces[f] = SIZE_MAX;
   gm_status st = GM_OK;
-  for (size_t t = 0; t < nt && st == GM_OK; ++t)
-    for (size_t i = 0; i < kp; ++i) {
-      size_t f = cx->faces[n][t * kp + i];
-      size_t *c = cx->cofaces + 2 * f;
-      if (c[0] == SIZE_MAX) {
-        c[0] = t;
-      } else if (c[1] == SIZE_MAX) {
-        c[1] = t;
-        size_t j = local_index(cx, c[0], f);
-        if (cx->simplices[n][c[0] * kp + j] == cx->simplices[n][t * kp + i]) {
-          st = gm_error_set(err, GM_EINVAL, "%s %zu and %s %zu have the same vertices",
-                            simplex_name(n), c[0], simplex_name(n), t);
+  if (cx->cofaces == NULL) { /* n == 1: build_faces found the vertices without sorting */
+    cx->cofaces = malloc(2 * (nf ? nf : 1) * sizeof(size_t));
+    cx->coface_local = malloc(2 * (nf ? nf : 1));
+    if (!cx->cofaces || !cx->coface_local) return gm_error_set(err, GM_ENOMEM, "out of memory");
+    cx->faces_problem = 1;
+  }
+  if (cx->faces_problem) { /* redo the cofaces in simplex order to report the first problem */
+    for (size_t f = 0; f < 2 * nf; ++f) cx->cofaces[f] = SIZE_MAX;
+    for (size_t t = 0; t < nt && st == GM_OK; ++t)
+      for (size_t i = 0; i < kp; ++i) {
+        size_t f = cx->faces[n][t * kp + i];
+        size_t *c = cx->cofaces + 2 * f;
+        if (c[0] == SIZE_MAX) {
+          c[0] = t;
+          cx->coface_local[2 * f] = (unsigned char)i;
+        } else if (c[1] == SIZE_MAX) {
+          c[1] = t;
+          cx->coface_local[2 * f + 1] = (unsigned char)i;
+          size_t j = local_index(cx, c[0], f);
+          if (cx->simplices[n][c[0] * kp + j] == cx->simplices[n][t * kp + i]) {
+            st = gm_error_set(err, GM_EINVAL, "%s %zu and %s %zu have the same vertices",
+                              simplex_name(n), c[0], simplex_name(n), t);
+            break;
+          }
+        } else {
+          const size_t *fv = cx->simplices[n - 1] + f * n;
+          char verts[96];
+          int w = 0;
+          for (size_t j = 0; j < n && w >= 0 && (size_t)w < sizeof verts; ++j)
+            w += snprintf(verts + w, sizeof verts - (size_t)w, j ? ", %zu" : "%zu", fv[j]);
+          st = gm_error_set(err, GM_EINVAL,
+                            "non-manifold complex: %s (%s) is shared by more than two %s "
+                            "(%zu, %zu, %zu)",
+                            simplex_name(n - 1), verts, n == 1 ? "edges" : n == 2 ? "triangles" : "tetrahedra",
+                            c[0], c[1], t);
           break;
         }
-      } else {
-        const size_t *fv = cx->simplices[n - 1] + f * n;
-        char verts[96];
-        int w = 0;
-        for (size_t j = 0; j < n && w >= 0 && (size_t)w < sizeof verts; ++j)
-          w += snprintf(verts + w, sizeof verts - (size_t)w, j ? ", %zu" : "%zu", fv[j]);
-        st = gm_error_set(err, GM_EINVAL,
-                          "non-manifold complex: %s (%s) is shared by more than two %s "
-                          "(%zu, %zu, %zu)",
-                          simplex_name(n - 1), verts, n == 1 ? "edges" : n == 2 ? "triangles" : "tetrahedra",
-                          c[0], c[1], t);
-        break;
       }
-    }
-  if (st != GM_OK) {
+    if (st != GM_OK) return st;
+  }
+  if (cx->N == n && orient_by_volume(cx)) {
+    for (size_t t = 0; t < nt; ++t) cx->n_reoriented += cx->orient[t] != given[t];
+    return GM_OK;
+  }
+  size_t *queue = malloc((nt ? nt : 1) * sizeof(size_t));
+  size_t *comp = malloc((nt ? nt : 1) * sizeof(size_t));
+  if (!queue || !comp) {
     free(queue), free(comp);
-    return st;
+    return gm_error_set(err, GM_ENOMEM, "out of memory");
   }
   for (size_t t = 0; t < nt; ++t) {
     comp[t] = SIZE_MAX;
@@ -212,9 +274,10 @@ static gm_status orient(gm_complex *cx, const signed char *given, gm_error *err)
       size_t t = queue[head++];
       for (size_t i = 0; i < kp; ++i) {
         size_t f = cx->faces[n][t * kp + i];
-        size_t o = cx->cofaces[2 * f] == t ? cx->cofaces[2 * f + 1] : cx->cofaces[2 * f];
+        int second = cx->cofaces[2 * f] == t;
+        size_t o = cx->cofaces[2 * f + (size_t)second];
         if (o == SIZE_MAX) continue;
-        size_t j = local_index(cx, o, f);
+        size_t j = cx->coface_local[2 * f + (size_t)second];
         /* induced orientations on the shared face must be opposite: o_t(−1)^i = −o_o(−1)^j */
         int want = -cx->orient[t] * (((i + j) & 1) ? -1 : 1);
         if (comp[o] == SIZE_MAX) {
@@ -369,6 +432,7 @@ void gm_complex_free(gm_complex *cx) {
   }
   free(cx->orient);
   free(cx->cofaces);
+  free(cx->coface_local);
   free(cx);
 }
 

@@ -42,7 +42,7 @@ static size_t subface(const gm_complex *cx, size_t d, size_t s, unsigned mask) {
 
 /* Face of simplex s of dimension d given by mask, with vertices handled directly. */
 size_t gm_local_face(const gm_complex *cx, size_t d, size_t s, unsigned mask) {
-  if (__builtin_popcount(mask) == 1) {
+  if ((mask & (mask - 1)) == 0) {
     size_t pos = (size_t)__builtin_ctz(mask);
     return cx->simplices[d][s * (d + 1) + pos];
   }
@@ -135,6 +135,127 @@ static const char *name_of(size_t k) {
   return names[k];
 }
 
+/* Circumcentric dual pieces of every subset of the d-simplex s from the stored circumcenters:
+ * the recursion of gm_local_dual_pieces (same operations in the same order, hence the same bits)
+ * with the sign of each barycentric coordinate taken from g->bsign instead of recomputing the 15
+ * circumcenters of a tetrahedron per tetrahedron. idx receives the global index of each subset
+ * (bitmask over the d+1 ascending vertices of s). */
+static const unsigned char popcount4[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
+
+typedef struct {
+  unsigned n_masks;           /* the 2^(d+1) − 2 proper non-empty subsets, by decreasing size and
+                                 then increasing mask (the order of gm_local_dual_pieces) */
+  unsigned mask[14], sup[14]; /* sup: mask plus its lowest missing position */
+  unsigned char pos[14];      /* position of that added vertex within sup */
+  unsigned char size[14];
+  unsigned char n_up[14];     /* the supersets with one more vertex, by increasing added vertex */
+  unsigned up[14][3];
+  unsigned char up_pos[14][3];
+} face_table;
+
+static void face_table_init(size_t d, face_table *ft) {
+  const unsigned full = (1u << (d + 1)) - 1;
+  ft->n_masks = 0;
+  for (size_t size = d; size >= 1; --size)
+    for (unsigned m = 1; m < full; ++m) {
+      if (popcount4[m] != size) continue;
+      const unsigned q = ft->n_masks++;
+      unsigned v = (unsigned)__builtin_ctz(~m);
+      unsigned t = m | (1u << v);
+      ft->mask[q] = m;
+      ft->sup[q] = t;
+      ft->pos[q] = popcount4[t & ((1u << v) - 1)];
+      ft->size[q] = (unsigned char)size;
+      ft->n_up[q] = 0;
+      for (unsigned w = 0; w <= d; ++w) {
+        if (m & (1u << w)) continue;
+        unsigned u = m | (1u << w);
+        ft->up[q][ft->n_up[q]] = u;
+        ft->up_pos[q][ft->n_up[q]++] = popcount4[u & ((1u << w) - 1)];
+      }
+    }
+}
+
+static void face_indices(const gm_complex *cx, size_t d, size_t s, const face_table *ft,
+                         size_t *idx) {
+  idx[(1u << (d + 1)) - 1] = s;
+  for (unsigned q = 0; q < ft->n_masks; ++q) {
+    unsigned m = ft->mask[q];
+    if (ft->size[q] == 1)
+      idx[m] = cx->simplices[d][s * (d + 1) + (size_t)__builtin_ctz(m)];
+    else /* facet of the (size)-face sup opposite the added vertex */
+      idx[m] = cx->faces[ft->size[q]][idx[ft->sup[q]] * (ft->size[q] + 1) + ft->pos[q]];
+  }
+}
+
+static const double factorial_table[] = {1.0, 1.0, 2.0, 6.0};
+
+/* Circumcentric dual pieces of every subset of the d-simplex whose subsets have the global
+ * indices idx (face_indices), from the stored circumcenters: the recursion of
+ * gm_local_dual_pieces (same operations in the same order, hence the same bits), with the sign
+ * of each barycentric coordinate read from g->bsign instead of recomputing the 15 circumcenters
+ * of a tetrahedron in every tetrahedron. */
+static void stored_dual_pieces(const gm_geometry *g, size_t d, const face_table *ft,
+                               const size_t *idx, double *pieces) {
+  const size_t N = g->cx->N;
+  const unsigned full = (1u << (d + 1)) - 1;
+  double P[16];
+  P[full] = 1.0;
+  pieces[full] = 1.0;
+  for (unsigned q = 0; q < ft->n_masks; ++q) {
+    const unsigned s = ft->mask[q], size = ft->size[q];
+    const double *cs = g->centers[size - 1] + idx[s] * N;
+    double sum = 0.0;
+    for (unsigned r = 0; r < ft->n_up[q]; ++r) {
+      const unsigned t = ft->up[q][r], pos = ft->up_pos[q][r];
+      const double *ct = g->centers[size] + idx[t] * N;
+      double d2 = 0.0;
+      for (size_t j = 0; j < N; ++j) {
+        double dd = ct[j] - cs[j];
+        d2 += dd * dd;
+      }
+      unsigned sg = (g->bsign[size][idx[t]] >> (2 * pos)) & 3u;
+      double h = sg == 1 ? sqrt(d2) : sg == 2 ? -sqrt(d2) : 0.0;
+      sum += h * P[t];
+    }
+    P[s] = sum;
+    pieces[s] = sum / factorial_table[d + 1 - size];
+  }
+}
+
+/* Circumcenter (or barycenter), volume and barycentric signs of k-simplex s. */
+static double center_of(gm_geometry *g, size_t k, size_t s, double *p) {
+  const gm_complex *cx = g->cx;
+  const size_t N = cx->N;
+  gm_gather_points(cx, k, cx->simplices[k] + s * (k + 1), p);
+  double *c = g->centers[k] + s * N;
+  if (g->opt.dual == GM_DUAL_BARYCENTRIC) {
+    for (size_t j = 0; j < N; ++j) {
+      double sum = 0.0;
+      for (size_t i = 0; i <= k; ++i) sum += p[i * N + j];
+      c[j] = sum / (double)(k + 1);
+    }
+    return gm_local_volume(N, k, p);
+  }
+  double bary[GM_LOCAL_MAX] = {0, 0, 0, 0};
+  double vol = gm_local_circumcenter(N, k, p, c, bary);
+  unsigned code = 0;
+  for (size_t i = 0; i <= k; ++i) code |= (bary[i] > 0.0 ? 1u : bary[i] < 0.0 ? 2u : 0u) << (2 * i);
+  g->bsign[k][s] = (unsigned char)code;
+  return vol;
+}
+
+/* 0: fine; 1: degenerate; 2: inverted (N == n). */
+static int top_check(const gm_geometry *g, size_t s, const double *p, double vol) {
+  const gm_complex *cx = g->cx;
+  const size_t n = cx->n, N = cx->N;
+  double L = longest_edge(N, n, p);
+  double Ln = n == 1 ? L : n == 2 ? L * L : L * L * L;
+  if (!(vol > g->opt.degenerate_tol * Ln)) return 1;
+  if (N == n && oriented_volume(n, p, cx->orient[s]) < 0.0) return 2;
+  return 0;
+}
+
 gm_status gm_geometry_create(const gm_complex *cx, const gm_geometry_options *options,
                              gm_geometry **out, gm_error *err) {
   if (out == NULL) return gm_error_set(err, GM_EINVAL, "output pointer is NULL");
@@ -146,7 +267,9 @@ gm_status gm_geometry_create(const gm_complex *cx, const gm_geometry_options *op
   g->opt = options ? *options : gm_geometry_defaults();
   if (!(g->opt.degenerate_tol >= 0.0)) g->opt.degenerate_tol = 1e-12;
   const size_t n = cx->n, N = cx->N;
+  const int circ = g->opt.dual != GM_DUAL_BARYCENTRIC;
   gm_status st = GM_OK;
+  double *block = NULL;
   for (size_t k = 0; k <= n; ++k) {
     size_t m = cx->count[k] ? cx->count[k] : 1;
     g->centers[k] = malloc(m * N * sizeof(double));
@@ -154,90 +277,122 @@ gm_status gm_geometry_create(const gm_complex *cx, const gm_geometry_options *op
     g->dual[k] = calloc(m, sizeof(double));
     g->bdual[k] = calloc(m, sizeof(double));
     g->star[k] = malloc(m * sizeof(double));
-    if (!g->centers[k] || !g->primal[k] || !g->dual[k] || !g->bdual[k] || !g->star[k]) {
+    g->bsign[k] = calloc(m, 1);
+    if (!g->centers[k] || !g->primal[k] || !g->dual[k] || !g->bdual[k] || !g->star[k] ||
+        !g->bsign[k]) {
       st = gm_error_set(err, GM_ENOMEM, "out of memory for the geometry of %zu simplices",
                         cx->count[n]);
       goto done;
     }
   }
-  double p[GM_LOCAL_MAX * GM_DEC_MAX_EMBED], bary[GM_LOCAL_MAX];
-  /* centers and primal volumes; degenerate and inverted top simplices */
+  /* centers and primal volumes, each simplex once; degenerate and inverted top simplices (the
+   * first offending one in index order is reported, whatever the number of threads) */
   for (size_t k = 0; k <= n; ++k) {
-    for (size_t s = 0; s < cx->count[k]; ++s) {
-      const size_t *t = cx->simplices[k] + s * (k + 1);
-      gm_gather_points(cx, k, t, p);
-      double *c = g->centers[k] + s * N;
-      double vol;
-      if (g->opt.dual == GM_DUAL_BARYCENTRIC) {
-        vol = gm_local_volume(N, k, p);
-        for (size_t j = 0; j < N; ++j) {
-          double sum = 0.0;
-          for (size_t i = 0; i <= k; ++i) sum += p[i * N + j];
-          c[j] = sum / (double)(k + 1);
-        }
-      } else {
-        vol = gm_local_circumcenter(N, k, p, c, bary);
-      }
+    const size_t m = cx->count[k];
+    size_t first_bad = SIZE_MAX, inverted = 0;
+    const int check = k == n;
+    GM_OMP(omp parallel for schedule(static) if (m > GM_OMP_MIN) reduction(min : first_bad) reduction(+ : inverted))
+    for (size_t s = 0; s < m; ++s) {
+      double p[GM_LOCAL_MAX * GM_DEC_MAX_EMBED];
+      double vol = center_of(g, k, s, p);
       g->primal[k][s] = vol;
-      if (k == n) {
+      if (check) {
+        int bad = top_check(g, s, p, vol);
+        if (bad == 2) ++inverted;
+        if ((bad == 1 || (bad == 2 && !g->opt.allow_inverted)) && s < first_bad) first_bad = s;
+      }
+    }
+    if (first_bad != SIZE_MAX) {
+      double p[GM_LOCAL_MAX * GM_DEC_MAX_EMBED];
+      const size_t s = first_bad;
+      const double vol = g->primal[n][s];
+      gm_gather_points(cx, n, cx->simplices[n] + s * (n + 1), p);
+      if (top_check(g, s, p, vol) == 1) {
         double L = longest_edge(N, n, p);
-        double Ln = n == 1 ? L : n == 2 ? L * L : L * L * L;
-        if (!(vol > g->opt.degenerate_tol * Ln)) {
-          st = gm_error_set(err, GM_EINVAL,
-                            "degenerate %s %zu: volume %.3g for longest edge %.3g", name_of(n), s,
-                            vol, L);
-          goto done;
-        }
-        if (N == n && oriented_volume(n, p, cx->orient[s]) < 0.0) {
-          ++g->inverted;
-          if (!g->opt.allow_inverted) {
-            st = gm_error_set(err, GM_EINVAL,
-                              "inverted %s %zu: its orientation is opposite to its neighbours' "
-                              "(signed volume %.3g)",
-                              name_of(n), s, -vol);
-            goto done;
-          }
-        }
+        st = gm_error_set(err, GM_EINVAL, "degenerate %s %zu: volume %.3g for longest edge %.3g",
+                          name_of(n), s, vol, L);
+      } else {
+        st = gm_error_set(err, GM_EINVAL,
+                          "inverted %s %zu: its orientation is opposite to its neighbours' "
+                          "(signed volume %.3g)",
+                          name_of(n), s, -vol);
       }
+      goto done;
     }
+    if (check) g->inverted = inverted;
   }
-  /* dual volumes, accumulated per top simplex */
+  /* dual volumes, accumulated per top simplex in index order: the pieces of a block of top
+   * simplices are computed in parallel, then added serially (a fixed summation order) */
   {
-    unsigned full = (1u << (n + 1)) - 1;
-    double pieces[16];
-    for (size_t T = 0; T < cx->count[n]; ++T) {
-      gm_gather_points(cx, n, cx->simplices[n] + T * (n + 1), p);
-      gm_local_dual_pieces(N, n, p, g->opt.dual, pieces);
-      for (unsigned s = 1; s < full; ++s) {
-        size_t k = (size_t)__builtin_popcount(s) - 1;
-        g->dual[k][gm_local_face(cx, n, T, s)] += pieces[s];
-      }
-      g->dual[n][T] = 1.0;
+    const unsigned full = (1u << (n + 1)) - 1;
+    const size_t nt = cx->count[n], B = 8192;
+    face_table ft;
+    face_table_init(n, &ft);
+    block = malloc(B * 16 * sizeof(double));
+    size_t *bidx = malloc(B * 16 * sizeof(size_t));
+    if (block == NULL || bidx == NULL) {
+      free(bidx);
+      st = gm_error_set(err, GM_ENOMEM, "out of memory");
+      goto done;
     }
+    for (size_t T0 = 0; T0 < nt; T0 += B) {
+      const size_t nb = nt - T0 < B ? nt - T0 : B;
+      GM_OMP(omp parallel for schedule(static) if (nb > 2048))
+      for (size_t b = 0; b < nb; ++b) {
+        const size_t T = T0 + b;
+        size_t *idx = bidx + 16 * b;
+        face_indices(cx, n, T, &ft, idx);
+        if (circ) {
+          stored_dual_pieces(g, n, &ft, idx, block + 16 * b);
+        } else {
+          double p[GM_LOCAL_MAX * GM_DEC_MAX_EMBED];
+          gm_gather_points(cx, n, cx->simplices[n] + T * (n + 1), p);
+          gm_local_dual_pieces(N, n, p, g->opt.dual, block + 16 * b);
+        }
+      }
+      for (size_t b = 0; b < nb; ++b) {
+        const size_t *idx = bidx + 16 * b;
+        const double *pieces = block + 16 * b;
+        for (unsigned s = 1; s < full; ++s) g->dual[popcount4[s] - 1][idx[s]] += pieces[s];
+        g->dual[n][T0 + b] = 1.0;
+      }
+    }
+    free(bidx);
   }
   /* dual volumes inside the boundary complex (seed 000 §3.3.2) */
   if (n == 1) {
     for (size_t v = 0; v < cx->count[0]; ++v) g->bdual[0][v] = cx->boundary[0][v] ? 1.0 : 0.0;
   } else {
     unsigned full = (1u << n) - 1;
-    double pieces[16];
+    double pieces[16], p[GM_LOCAL_MAX * GM_DEC_MAX_EMBED];
+    size_t idx[16];
+    face_table ft;
+    face_table_init(n - 1, &ft);
     for (size_t F = 0; F < cx->count[n - 1]; ++F) {
       if (!cx->boundary[n - 1][F]) continue;
-      gm_gather_points(cx, n - 1, cx->simplices[n - 1] + F * n, p);
-      gm_local_dual_pieces(N, n - 1, p, g->opt.dual, pieces);
-      for (unsigned s = 1; s < full; ++s) {
-        size_t k = (size_t)__builtin_popcount(s) - 1;
-        g->bdual[k][gm_local_face(cx, n - 1, F, s)] += pieces[s];
+      face_indices(cx, n - 1, F, &ft, idx);
+      if (circ) {
+        stored_dual_pieces(g, n - 1, &ft, idx, pieces);
+      } else {
+        gm_gather_points(cx, n - 1, cx->simplices[n - 1] + F * n, p);
+        gm_local_dual_pieces(N, n - 1, p, g->opt.dual, pieces);
       }
+      for (unsigned s = 1; s < full; ++s) g->bdual[popcount4[s] - 1][idx[s]] += pieces[s];
       g->bdual[n - 1][F] = 1.0;
     }
   }
-  for (size_t k = 0; k <= n; ++k)
-    for (size_t s = 0; s < cx->count[k]; ++s) {
+  for (size_t k = 0; k <= n; ++k) {
+    const size_t m = cx->count[k];
+    size_t neg = 0;
+    GM_OMP(omp parallel for schedule(static) if (m > GM_OMP_MIN) reduction(+ : neg))
+    for (size_t s = 0; s < m; ++s) {
       g->star[k][s] = g->dual[k][s] / g->primal[k][s];
-      if (!(g->dual[k][s] > 0.0)) ++g->negative[k];
+      if (!(g->dual[k][s] > 0.0)) ++neg;
     }
+    g->negative[k] = neg;
+  }
 done:
+  free(block);
   if (st != GM_OK) {
     gm_geometry_free(g);
     return st;
@@ -254,6 +409,7 @@ void gm_geometry_free(gm_geometry *g) {
     free(g->dual[k]);
     free(g->bdual[k]);
     free(g->star[k]);
+    free(g->bsign[k]);
   }
   free(g);
 }

@@ -5,6 +5,17 @@
 #include "core/internal.h"
 #include "geomint/dec.h"
 
+/* OpenMP pragmas that vanish (without an unknown-pragma warning) when OpenMP is not enabled. Every
+ * parallel loop in dec writes disjoint slots or reduces integers, so results do not depend on the
+ * number of threads. */
+#ifdef _OPENMP
+#define GM_OMP(x) _Pragma(#x)
+#else
+#define GM_OMP(x)
+#endif
+/* Loops over fewer items than this stay serial (thread start-up would dominate). */
+#define GM_OMP_MIN 20000
+
 struct gm_complex {
   size_t n, N, n_vertices;
   double *x;
@@ -15,6 +26,8 @@ struct gm_complex {
   size_t n_reoriented;
   gm_csr *d[GM_DEC_MAX_DIM];
   size_t *cofaces; /* 2 per (n−1)-face */
+  unsigned char *coface_local; /* 2 per (n−1)-face: its local index in each coface */
+  int faces_problem;           /* an (n−1)-face with more than two cofaces or a duplicate */
   unsigned char *boundary[GM_DEC_MAX_DIM + 1];
   size_t n_boundary[GM_DEC_MAX_DIM + 1];
 };
@@ -27,6 +40,8 @@ struct gm_geometry {
   double *dual[GM_DEC_MAX_DIM + 1];
   double *bdual[GM_DEC_MAX_DIM + 1];
   double *star[GM_DEC_MAX_DIM + 1];
+  unsigned char *bsign[GM_DEC_MAX_DIM + 1]; /* signs of the barycentric coordinates of each
+                                               circumcenter: 2 bits per vertex (1 +, 2 −, 0 zero) */
   size_t negative[GM_DEC_MAX_DIM + 1];
   size_t inverted;
 };
