@@ -15,66 +15,9 @@
 
 #include "geomint/mesh.h"
 
-static char tmpdir[256];
-
-static void make_tmpdir(void) {
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/geomint-cli-mesh-XXXXXX");
-  cr_assert_not_null(mkdtemp(tmpdir));
-}
-
-static void remove_tmpdir(void) {
-  char cmd[320];
-  snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
-  cr_assert_eq(system(cmd), 0);
-}
+#include "cli/cli_harness.h"
 
 TestSuite(cli_mesh, .init = make_tmpdir, .fini = remove_tmpdir, .timeout = 120);
-
-typedef struct {
-  int status;
-  char *out, *err;
-} run_output;
-
-static char *read_stream(FILE *f) {
-  size_t cap = 4096, len = 0, n;
-  char *buf = malloc(cap);
-  while ((n = fread(buf + len, 1, cap - len - 1, f)) > 0) {
-    len += n;
-    if (cap - len < 2) buf = realloc(buf, cap *= 2);
-  }
-  buf[len] = '\0';
-  return buf;
-}
-
-static run_output run_cli(const char *fmt, ...) {
-  char args[1024], cmd[2048], errpath[512];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(args, sizeof args, fmt, ap);
-  va_end(ap);
-  snprintf(errpath, sizeof errpath, "%s/stderr.txt", tmpdir);
-  snprintf(cmd, sizeof cmd, "cd '%s' && exec '%s' %s 2>'%s'", tmpdir, GM_CLI_PATH, args, errpath);
-  FILE *p = popen(cmd, "r");
-  cr_assert_not_null(p);
-  run_output r;
-  r.out = read_stream(p);
-  int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  FILE *f = fopen(errpath, "r");
-  r.err = read_stream(f);
-  fclose(f);
-  return r;
-}
-
-static void run_free(run_output *r) { free(r->out), free(r->err); }
-
-static cJSON *parse_json(const char *text) {
-  const char *end = NULL;
-  cJSON *root = cJSON_ParseWithOpts(text, &end, 0);
-  cr_assert_not_null(root, "not JSON: %s", text);
-  for (; *end; ++end) cr_assert(isspace((unsigned char)*end), "text after the JSON: %s", end);
-  return root;
-}
 
 static double json_at(const cJSON *o, const char *key, int i) {
   const cJSON *a = cJSON_GetObjectItemCaseSensitive(o, key);
@@ -104,7 +47,7 @@ Test(cli_mesh, info_json_on_gmsh_files) {
     cr_expect_gt(json_at(o, "hodge_star_min", 1), 0.1);
     cr_expect_lt(json_at(o, "hodge_star_max", 1), 1.1);
     cJSON_Delete(o);
-    run_free(&r);
+    run_output_free(&r);
   }
   run_output r = run_cli("mesh info '%s/tests/data/cube_v41.msh' --json", GM_SOURCE_DIR);
   cr_assert_eq(r.status, 0, "%s", r.err);
@@ -118,7 +61,7 @@ Test(cli_mesh, info_json_on_gmsh_files) {
   cr_expect_gt(json_at(o, "not_well_centred", -1), 100);
   cr_expect_gt(json_at(o, "negative_duals", 2), 0);
   cJSON_Delete(o);
-  run_free(&r);
+  run_output_free(&r);
 }
 
 Test(cli_mesh, info_table) {
@@ -127,7 +70,7 @@ Test(cli_mesh, info_table) {
   cr_expect(strstr(r.out, "Euler characteristic         1\n") != NULL, "%s", r.out);
   cr_expect(strstr(r.out, "Betti numbers                1 0 0\n") != NULL, "%s", r.out);
   cr_expect(strstr(r.out, "not well-centred cells       0\n") != NULL, "%s", r.out);
-  run_free(&r);
+  run_output_free(&r);
 }
 
 static int write_rect(const char *path, size_t n);
@@ -138,7 +81,7 @@ static double poisson_error(const char *file) {
   const char *p = strstr(r.out, "max error");
   cr_assert_not_null(p, "%s", r.out);
   double e = strtod(p + strlen("max error"), NULL);
-  run_free(&r);
+  run_output_free(&r);
   return e;
 }
 
@@ -163,7 +106,7 @@ Test(cli_mesh, poisson_error_falls_at_second_order) {
   cr_expect(strstr(text, "Name=\"u_h\"") && strstr(text, "Name=\"error\""));
   cr_expect(strstr(text, "NumberOfPoints=\"289\" NumberOfCells=\"512\"") != NULL);
   free(text);
-  run_free(&r);
+  run_output_free(&r);
 }
 
 Test(cli_mesh, bad_files_and_arguments) {
@@ -176,20 +119,20 @@ Test(cli_mesh, bad_files_and_arguments) {
   run_output r = run_cli("mesh info bad.msh");
   cr_expect_eq(r.status, 1);
   cr_expect(strstr(r.err, "line 12") && strstr(r.err, "node 9"), "%s", r.err);
-  run_free(&r);
+  run_output_free(&r);
   r = run_cli("mesh info missing.off");
   cr_expect_eq(r.status, 1);
   cr_expect(strstr(r.err, "cannot open") != NULL, "%s", r.err);
-  run_free(&r);
+  run_output_free(&r);
   r = run_cli("mesh info");
   cr_expect_eq(r.status, 2);
-  run_free(&r);
+  run_output_free(&r);
   r = run_cli("mesh frobnicate x.msh");
   cr_expect_eq(r.status, 2);
-  run_free(&r);
+  run_output_free(&r);
   r = run_cli("mesh info x.msh --out y.vtu");
   cr_expect_eq(r.status, 2);
-  run_free(&r);
+  run_output_free(&r);
 }
 
 static int write_rect(const char *path, size_t n) {

@@ -15,89 +15,9 @@
 
 #include "geomint/geomint.h"
 
-static char tmpdir[256];
-
-static void make_tmpdir(void) {
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/geomint-wp-test-XXXXXX");
-  cr_assert_not_null(mkdtemp(tmpdir));
-}
-
-static void remove_tmpdir(void) {
-  char cmd[320];
-  snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmpdir);
-  cr_assert_eq(system(cmd), 0);
-}
+#include "cli/cli_harness.h"
 
 TestSuite(wp, .init = make_tmpdir, .fini = remove_tmpdir, .timeout = 120);
-
-typedef struct run_output {
-  int status;
-  char *out, *err;
-} run_output;
-
-static char *read_stream(FILE *f) {
-  size_t cap = 4096, len = 0, n;
-  char *buf = malloc(cap);
-  cr_assert_not_null(buf);
-  while ((n = fread(buf + len, 1, cap - len - 1, f)) > 0) {
-    len += n;
-    if (cap - len < 2) {
-      cap *= 2;
-      buf = realloc(buf, cap);
-      cr_assert_not_null(buf);
-    }
-  }
-  buf[len] = '\0';
-  return buf;
-}
-
-/* Run `geomint ARGS` in the temporary directory. */
-static run_output run_cli(const char *fmt, ...) {
-  char args[1024], cmd[2048], err_path[320];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(args, sizeof args, fmt, ap);
-  va_end(ap);
-  snprintf(err_path, sizeof err_path, "%s/stderr.txt", tmpdir);
-  snprintf(cmd, sizeof cmd, "cd '%s' && exec '%s' %s 2>'%s'", tmpdir, GM_CLI_PATH, args,
-           err_path);
-  FILE *p = popen(cmd, "r");
-  cr_assert_not_null(p);
-  run_output r;
-  r.out = read_stream(p);
-  int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  FILE *e = fopen(err_path, "r");
-  cr_assert_not_null(e);
-  r.err = read_stream(e);
-  fclose(e);
-  return r;
-}
-
-static void run_output_free(run_output *r) {
-  free(r->out);
-  free(r->err);
-}
-
-static cJSON *parse_json(const char *text) {
-  const char *end = NULL;
-  cJSON *root = cJSON_ParseWithOpts(text, &end, 0);
-  cr_assert_not_null(root, "not JSON: %s", text);
-  for (; *end; ++end) cr_assert(isspace((unsigned char)*end), "text after the JSON: %s", end);
-  return root;
-}
-
-static double json_number(const cJSON *obj, const char *key) {
-  const cJSON *item = cJSON_GetObjectItemCaseSensitive(obj, key);
-  cr_assert(cJSON_IsNumber(item), "key '%s' missing or not a number", key);
-  return item->valuedouble;
-}
-
-static const char *json_string(const cJSON *obj, const char *key) {
-  const cJSON *item = cJSON_GetObjectItemCaseSensitive(obj, key);
-  cr_assert(cJSON_IsString(item), "key '%s' missing or not a string", key);
-  return item->valuestring;
-}
 
 /* The rows of one method, in order: at most 64. */
 static size_t method_rows(const cJSON *rows, const char *method, const cJSON **out) {
