@@ -28,4 +28,17 @@ static inline FILE *bench_open_json(int argc, char **argv, const char *name) {
   return f;
 }
 
+/* The overhead benches' JSON rows end alike: the timing fields, then "," unless last. */
+static inline void bench_json_timing(FILE *f, double bare_s, double library_s, double ratio,
+                                     int identical, int last) {
+  fprintf(f, "\"bare_s\": %.6f, \"library_s\": %.6f, \"ratio\": %.4f, \"identical\": %s}%s\n",
+          bare_s, library_s, ratio, identical ? "true" : "false", last ? "" : ",");
+}
+
+/* Close the "rows" array and the object opened by the caller, and the file. */
+static inline void bench_close_json(FILE *f) {
+  fprintf(f, "  ]\n}\n");
+  fclose(f);
+}
+
 #endif

@@ -135,14 +135,12 @@ int main(int argc, char **argv) {
     fprintf(f, "{\n  \"benchmark\": \"composition_overhead\",\n  \"floor\": \"bare loop with the "
                "same merged kick-drift sequence and force calls\",\n  \"target_ratio\": 1.10,\n"
                "  \"rows\": [\n");
-    for (size_t i = 0; i < 4; ++i)
-      fprintf(f,
-              "    {\"case\": \"%s\", \"force_evals\": %zu, \"bare_s\": %.6f, \"library_s\": %.6f, "
-              "\"ratio\": %.4f, \"identical\": %s}%s\n",
-              rows[i].name, rows[i].evals, rows[i].bare_s, rows[i].library_s, rows[i].ratio,
-              rows[i].identical ? "true" : "false", i + 1 < 4 ? "," : "");
-    fprintf(f, "  ]\n}\n");
-    fclose(f);
+    for (size_t i = 0; i < 4; ++i) {
+      fprintf(f, "    {\"case\": \"%s\", \"force_evals\": %zu, ", rows[i].name, rows[i].evals);
+      bench_json_timing(f, rows[i].bare_s, rows[i].library_s, rows[i].ratio, rows[i].identical,
+                        i + 1 == 4);
+    }
+    bench_close_json(f);
   }
   free(yc);
   gm_model_free(kepler);

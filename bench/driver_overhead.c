@@ -156,14 +156,12 @@ int main(int argc, char **argv) {
     fprintf(f, "{\n  \"benchmark\": \"driver_overhead\",\n  \"method\": \"verlet\",\n"
                "  \"floor\": \"bare loop with the same force calls\",\n  \"target_ratio\": 1.10,\n"
                "  \"rows\": [\n");
-    for (size_t i = 0; i < 2; ++i)
-      fprintf(f,
-              "    {\"problem\": \"%s\", \"steps\": %zu, \"bare_s\": %.6f, \"library_s\": %.6f, "
-              "\"ratio\": %.4f, \"identical\": %s}%s\n",
-              res[i].name, res[i].steps, res[i].bare_s, res[i].library_s, res[i].ratio,
-              res[i].identical ? "true" : "false", i + 1 < 2 ? "," : "");
-    fprintf(f, "  ]\n}\n");
-    fclose(f);
+    for (size_t i = 0; i < 2; ++i) {
+      fprintf(f, "    {\"problem\": \"%s\", \"steps\": %zu, ", res[i].name, res[i].steps);
+      bench_json_timing(f, res[i].bare_s, res[i].library_s, res[i].ratio, res[i].identical,
+                        i + 1 == 2);
+    }
+    bench_close_json(f);
   }
   gm_model_free(kepler);
   return res[0].identical && res[1].identical ? 0 : 1;
