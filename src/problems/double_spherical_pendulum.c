@@ -78,25 +78,6 @@ static int constraint_jacobian(void *ctx, const double *q, double *jac) {
   return 0;
 }
 
-static int rotation_z(void *ctx, const double *q, double *xi) {
-  (void)ctx;
-  for (int b = 0; b < 2; ++b) {
-    xi[3 * b] = -q[3 * b + 1];
-    xi[3 * b + 1] = q[3 * b];
-    xi[3 * b + 2] = 0.0;
-  }
-  return 0;
-}
-
-static double angular_momentum_z(void *ctx, const double *y) {
-  (void)ctx;
-  return y[0] * y[7] - y[1] * y[6] + y[3] * y[10] - y[4] * y[9];
-}
-
-static const gm_symmetry symmetries[] = {{"angular-momentum-z", rotation_z}};
-static const gm_invariant invariants[] = {{"angular-momentum-z", angular_momentum_z}};
-static const char *const invariant_names[] = {"angular-momentum-z"};
-
 static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *t0, double *y0,
                        char *errmsg, size_t cap) {
   double_spherical *s = ctx;
@@ -116,10 +97,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   pb->n_constraints = 2;
   pb->constraint = constraint;
   pb->constraint_jacobian = constraint_jacobian;
-  pb->n_symmetries = 1;
-  pb->symmetries = symmetries;
-  pb->n_invariants = 1;
-  pb->invariants = invariants;
+  gm_rotation_z_setup(pb);
   /* first link at 1 rad from the vertical in the xz-plane, second at 0.5 rad turned by 90°;
    * velocities tangent to both spheres: v1 = ω1 e_z × q1, v2 = ω2 e_z × q2 + ν t2 with t2 the
    * polar unit tangent of q2 */
@@ -147,5 +125,5 @@ static const gm_param_info params[] = {
 const gm_model_def gm_model_double_spherical_pendulum = {
     {"double-spherical-pendulum",
      "double spherical pendulum in R^3 x R^3 with two length constraints (seed 001 2.10)",
-     GM_PROBLEM_LAGRANGIAN, 6, 7, params, 1, invariant_names, 0},
+     GM_PROBLEM_LAGRANGIAN, 6, 7, params, 1, gm_rotation_z_invariant_names, 0},
     sizeof(double_spherical), NULL, setup, NULL, NULL};

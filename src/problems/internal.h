@@ -53,6 +53,12 @@ void gm_gravity_setup(gm_problem *pb);
 #define GM_GRAVITY_N_INVARIANTS 6
 extern const char *const gm_gravity_invariant_names[GM_GRAVITY_N_INVARIANTS];
 
+/* Rotation about the z axis (rotation_z.c), shared by the problems whose q is k points in R³:
+ * sets the symmetry ξ_Q = e_z × q_i and its Noether momentum, both named "angular-momentum-z".
+ * The context must begin with the number of degrees of freedom 3k (a size_t). */
+void gm_rotation_z_setup(gm_problem *pb);
+extern const char *const gm_rotation_z_invariant_names[1];
+
 extern const gm_model_def gm_model_harmonic;
 extern const gm_model_def gm_model_pendulum;
 extern const gm_model_def gm_model_kepler;

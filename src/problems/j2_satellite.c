@@ -64,23 +64,6 @@ static int hessian(void *ctx, const double *q, const double *v, double *h) {
   return 0;
 }
 
-static int rotation_z(void *ctx, const double *q, double *xi) {
-  (void)ctx;
-  xi[0] = -q[1];
-  xi[1] = q[0];
-  xi[2] = 0.0;
-  return 0;
-}
-
-static double angular_momentum_z(void *ctx, const double *y) {
-  (void)ctx;
-  return y[0] * y[4] - y[1] * y[3];
-}
-
-static const gm_symmetry symmetries[] = {{"angular-momentum-z", rotation_z}};
-static const gm_invariant invariants[] = {{"angular-momentum-z", angular_momentum_z}};
-static const char *const invariant_names[] = {"angular-momentum-z"};
-
 static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *t0, double *y0,
                        char *errmsg, size_t cap) {
   j2sat *s = ctx;
@@ -93,10 +76,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   pb->dl_dv = dl_dv;
   pb->lagrangian_hessian = hessian;
   pb->kinetic_is_quadratic = 1;
-  pb->n_symmetries = 1;
-  pb->symmetries = symmetries;
-  pb->n_invariants = 1;
-  pb->invariants = invariants;
+  gm_rotation_z_setup(pb);
   const double r0 = params[1], inc = params[2], vc = sqrt(1.0 / r0);
   y0[0] = r0;
   y0[1] = y0[2] = 0.0;
@@ -115,5 +95,5 @@ static const gm_param_info params[] = {
 const gm_model_def gm_model_j2_satellite = {
     {"j2-satellite",
      "satellite about an oblate planet, V = -1/r + (J2/r^3)(3z^2/(2r^2) - 1/2) (seed 001 2.9)",
-     GM_PROBLEM_LAGRANGIAN, 3, 3, params, 1, invariant_names, 0},
+     GM_PROBLEM_LAGRANGIAN, 3, 3, params, 1, gm_rotation_z_invariant_names, 0},
     sizeof(j2sat), NULL, setup, NULL, NULL};

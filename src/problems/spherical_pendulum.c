@@ -54,23 +54,6 @@ static int constraint_jacobian(void *ctx, const double *q, double *jac) {
   return 0;
 }
 
-static int rotation_z(void *ctx, const double *q, double *xi) {
-  (void)ctx;
-  xi[0] = -q[1];
-  xi[1] = q[0];
-  xi[2] = 0.0;
-  return 0;
-}
-
-static double angular_momentum_z(void *ctx, const double *y) {
-  (void)ctx;
-  return y[0] * y[4] - y[1] * y[3];
-}
-
-static const gm_symmetry symmetries[] = {{"angular-momentum-z", rotation_z}};
-static const gm_invariant invariants[] = {{"angular-momentum-z", angular_momentum_z}};
-static const char *const invariant_names[] = {"angular-momentum-z"};
-
 static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *t0, double *y0,
                        char *errmsg, size_t cap) {
   spherical *s = ctx;
@@ -88,10 +71,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   pb->n_constraints = 1;
   pb->constraint = constraint;
   pb->constraint_jacobian = constraint_jacobian;
-  pb->n_symmetries = 1;
-  pb->symmetries = symmetries;
-  pb->n_invariants = 1;
-  pb->invariants = invariants;
+  gm_rotation_z_setup(pb);
   const double th = params[3], w = params[4];
   y0[0] = s->l * sin(th);
   y0[1] = 0.0;
@@ -113,5 +93,5 @@ static const gm_param_info params[] = {
 const gm_model_def gm_model_spherical_pendulum = {
     {"spherical-pendulum",
      "spherical pendulum in R^3 with |q| = l as a holonomic constraint, L = m|v|^2/2 - m g z",
-     GM_PROBLEM_LAGRANGIAN, 3, 5, params, 1, invariant_names, 0},
+     GM_PROBLEM_LAGRANGIAN, 3, 5, params, 1, gm_rotation_z_invariant_names, 0},
     sizeof(spherical), NULL, setup, NULL, NULL};
