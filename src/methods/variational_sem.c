@@ -89,19 +89,26 @@ static void invalidate(gm_integrator *it) {
   }
 }
 
-/* E_d at the last evaluation. */
-static gm_status discrete_energy(vi_engine *e, double *energy) {
+/* E_d at the last evaluation; *size (if not NULL) gets Σ b_i (|L_v·V| + |L|), the scale of
+ * its rounding error. */
+static gm_status discrete_energy_sized(vi_engine *e, double *energy, double *size) {
   const size_t d = e->d;
-  double sum = 0.0;
+  double sum = 0.0, mag = 0.0;
   for (size_t i = 0; i < e->r; ++i) {
     double l, pv = 0.0;
     gm_status st = gm_vi_lagrangian_at(e, i, &l);
     if (st != GM_OK) return st;
     for (size_t k = 0; k < d; ++k) pv += e->Lv[i * d + k] * e->V[i * d + k];
     sum += e->b[i] * (pv - l);
+    mag += fabs(e->b[i]) * (fabs(pv) + fabs(l));
   }
   *energy = sum;
+  if (size != NULL) *size = mag;
   return GM_OK;
+}
+
+static gm_status discrete_energy(vi_engine *e, double *energy) {
+  return discrete_energy_sized(e, energy, NULL);
 }
 
 /* Straight-line (or extrapolated) starting values for a step of size h. */
@@ -138,14 +145,19 @@ static gm_status solve_with_energy(gm_integrator *it, sem_work *w) {
   vi_engine *e = &w->e;
   const size_t d = e->d, s = e->s, sd = s * d, n2 = 2 * d, sp = s + 1;
   double *col = e->res, *row = e->dx, *jac = e->jac;
-  double step = INFINITY, step_prev;
+  double step = INFINITY, step_prev = INFINITY;
   gm_status st = GM_OK;
   for (size_t iter = 0;; ++iter) {
     if ((st = gm_vi_solve(e, 1, 0)) != GM_OK) return st;
-    double ed;
-    if ((st = discrete_energy(e, &ed)) != GM_OK) return st;
+    double ed, size;
+    if ((st = discrete_energy_sized(e, &ed, &size)) != GM_OK) return st;
     /* converged: the last change of h was at round-off, or the energy already is */
     if (step <= 4.0 * EPS * fabs(e->h) || fabs(ed - w->energy) <= 2.0 * EPS * fabs(w->energy))
+      return GM_OK;
+    /* With small steps df/dh = O(h) is small and h is fixed only to ε·size/|df/dh|, far above
+     * ε|h|: once the changes of h stop shrinking with E_d at its rounding level, that is the
+     * root (without this, such steps were counted as least-squares fallbacks that found it). */
+    if (step < INFINITY && step >= step_prev && fabs(ed - w->energy) <= 16.0 * EPS * size)
       return GM_OK;
     if (iter >= SEM_MAX_ITERATIONS)
       return gm_fail(e->errmsg, GM_ERRMSG_SIZE, GM_ENOCONV,
