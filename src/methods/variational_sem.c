@@ -41,7 +41,7 @@ typedef struct {
   int have_energy;
   double energy;      /* E, the discrete energy of the run */
   double h_prev;      /* the last step taken */
-  double *z_prev, *dp, *x_try;
+  double *z_prev, *dp;
   size_t fallbacks;
   double last_energy_error;
 } sem_work;
@@ -65,8 +65,7 @@ static gm_status init(gm_integrator *it) {
   const size_t d = it->dim, s = w->degree;
   w->z_prev = calloc(s * d, sizeof(double));
   w->dp = calloc(d, sizeof(double));
-  w->x_try = calloc(w->e.n_x, sizeof(double));
-  if (!w->z_prev || !w->dp || !w->x_try) return GM_ENOMEM;
+  if (!w->z_prev || !w->dp) return GM_ENOMEM;
   return GM_OK;
 }
 
@@ -76,7 +75,6 @@ static void release(gm_integrator *it) {
   gm_vi_engine_release(&w->e);
   free(w->z_prev);
   free(w->dp);
-  free(w->x_try);
   free(w);
   it->work = NULL;
 }
@@ -297,7 +295,6 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
     const double guess = (h < 0) == (w->h_prev < 0) ? w->h_prev : -w->h_prev;
     e->h = guess;
     starting_values(w, guess, guess == w->h_prev);
-    memcpy(w->x_try, e->x, e->n_x * sizeof *e->x);
     st = solve_with_energy(it, w);
     const double ratio = e->h / guess;
     if (st == GM_ECALLBACK) return st;
