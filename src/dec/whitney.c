@@ -268,12 +268,20 @@ static void face_point(const whitney_frame *f, const size_t *t, const size_t *po
   }
 }
 
-gm_status gm_dec_interior_product(const gm_geometry *g, size_t k, const double *X,
-                                  const double *alpha, double *out, gm_error *err) {
-  gm_status st = check_field(g, k, 1, X, alpha, out, err);
-  if (st != GM_OK) return st;
+/* ∫ over local face pos[0..m] of top simplex T (vertices t) of the operator's integrand, by the
+ * rule r on the face (the caller divides by m!). */
+typedef double (*face_integral_fn)(const whitney_frame *f, const size_t *t, const size_t *pos,
+                                   size_t m, const rule *r, const double *X);
+
+/* The cochain on m-simplices whose value is the average, over the top simplices containing the
+ * face and weighted by their volumes, of the integral of the Whitney interpolant of alpha (a
+ * k-cochain) under the operator: the Whitney form is discontinuous across faces, and averaging
+ * over all cofaces makes the result single-valued. */
+static gm_status coface_average(const gm_geometry *g, size_t k, size_t m, const double *X,
+                                const double *alpha, face_integral_fn integral, double *out,
+                                gm_error *err) {
   const gm_complex *cx = g->cx;
-  const size_t n = cx->n, N = cx->N, m = k - 1, nout = cx->count[m];
+  const size_t n = cx->n, nout = cx->count[m];
   double *wsum = calloc(nout ? nout : 1, sizeof(double));
   rule r = {0, NULL, NULL};
   if (wsum == NULL || rule_make(m, 2, &r) != GM_OK) {
@@ -284,53 +292,6 @@ gm_status gm_dec_interior_product(const gm_geometry *g, size_t k, const double *
   unsigned fm[6];
   masks_of(n, m, fm);
   const size_t nf = gm_binomial(n + 1, m + 1);
-  for (size_t T = 0; T < cx->count[n]; ++T) {
-    whitney_frame f;
-    if (!frame_init(&f, cx, T, k, alpha)) {
-      st = gm_error_set(err, GM_EINVAL, "degenerate top simplex %zu", T);
-      break;
-    }
-    const size_t *t = cx->simplices[n] + T * (n + 1);
-    const double vol = g->primal[n][T];
-    for (size_t i = 0; i < nf; ++i) {
-      size_t pos[GM_LOCAL_MAX], q = 0;
-      for (size_t v = 0; v <= n; ++v)
-        if (fm[i] & (1u << v)) pos[q++] = v;
-      double u[3 * GM_DEC_MAX_EMBED], lam[GM_LOCAL_MAX];
-      for (size_t a = 1; a <= m; ++a)
-        for (size_t j = 0; j < N; ++j)
-          u[a * N + j] = f.p[pos[a] * N + j] - f.p[pos[0] * N + j];
-      double sum = 0.0;
-      for (size_t qq = 0; qq < r.np; ++qq) {
-        face_point(&f, t, pos, m, r.bary + qq * (m + 1), X, lam, u);
-        sum += r.w[qq] * frame_eval(&f, lam, u);
-      }
-      size_t face = gm_local_face(cx, n, T, fm[i]);
-      out[face] += vol * sum / fact[m];
-      wsum[face] += vol;
-    }
-  }
-  if (st == GM_OK)
-    for (size_t s = 0; s < nout; ++s) out[s] /= wsum[s];
-  free(wsum);
-  free(r.bary);
-  return st;
-}
-
-static gm_status lie_flow(const gm_geometry *g, size_t k, const double *X, const double *alpha,
-                          double *out, gm_error *err) {
-  const gm_complex *cx = g->cx;
-  const size_t n = cx->n, N = cx->N, nout = cx->count[k];
-  double *wsum = calloc(nout ? nout : 1, sizeof(double));
-  rule r = {0, NULL, NULL};
-  if (wsum == NULL || rule_make(k, 2, &r) != GM_OK) {
-    free(wsum), free(r.bary);
-    return gm_error_set(err, GM_ENOMEM, "out of memory");
-  }
-  for (size_t s = 0; s < nout; ++s) out[s] = 0.0;
-  unsigned fm[6];
-  masks_of(n, k, fm);
-  const size_t nf = gm_binomial(n + 1, k + 1);
   gm_status st = GM_OK;
   for (size_t T = 0; T < cx->count[n]; ++T) {
     whitney_frame f;
@@ -344,32 +305,9 @@ static gm_status lie_flow(const gm_geometry *g, size_t k, const double *X, const
       size_t pos[GM_LOCAL_MAX], q = 0;
       for (size_t v = 0; v <= n; ++v)
         if (fm[i] & (1u << v)) pos[q++] = v;
-      /* edge vectors E_a and their velocities dE_a = X(q_a) − X(q_0) */
-      double E[3 * GM_DEC_MAX_EMBED], dE[3 * GM_DEC_MAX_EMBED], u[3 * GM_DEC_MAX_EMBED];
-      for (size_t a = 1; a <= k; ++a)
-        for (size_t j = 0; j < N; ++j) {
-          E[(a - 1) * N + j] = f.p[pos[a] * N + j] - f.p[pos[0] * N + j];
-          dE[(a - 1) * N + j] = X[t[pos[a]] * N + j] - X[t[pos[0]] * N + j];
-        }
-      double sum = 0.0;
-      for (size_t qq = 0; qq < r.np; ++qq) {
-        double lam[GM_LOCAL_MAX], Xq[GM_DEC_MAX_EMBED], dlam[GM_LOCAL_MAX];
-        face_point(&f, t, pos, k, r.bary + qq * (k + 1), X, lam, Xq);
-        for (size_t a = 0; a <= n; ++a) {
-          double s = 0.0;
-          for (size_t j = 0; j < N; ++j) s += f.grad[a * N + j] * Xq[j];
-          dlam[a] = s;
-        }
-        double val = frame_eval(&f, dlam, E); /* (D_X ω)(E_1..E_k) */
-        for (size_t a = 0; a < k; ++a) {      /* Σ_a ω(E_1..dE_a..E_k) */
-          memcpy(u, E, k * N * sizeof(double));
-          memcpy(u + a * N, dE + a * N, N * sizeof(double));
-          val += frame_eval(&f, lam, u);
-        }
-        sum += r.w[qq] * val;
-      }
+      const double sum = integral(&f, t, pos, m, &r, X);
       size_t face = gm_local_face(cx, n, T, fm[i]);
-      out[face] += vol * sum / fact[k] * gm_simplex_sign(cx, k, face);
+      out[face] += vol * sum / fact[m] * gm_simplex_sign(cx, m, face);
       wsum[face] += vol;
     }
   }
@@ -380,12 +318,66 @@ static gm_status lie_flow(const gm_geometry *g, size_t k, const double *X, const
   return st;
 }
 
+/* ∫_face i_X ω: ω(X, u_1..u_m) with u_a the face's edge vectors from its first vertex. */
+static double interior_integral(const whitney_frame *f, const size_t *t, const size_t *pos,
+                                size_t m, const rule *r, const double *X) {
+  const size_t N = f->N;
+  double u[3 * GM_DEC_MAX_EMBED], lam[GM_LOCAL_MAX];
+  for (size_t a = 1; a <= m; ++a)
+    for (size_t j = 0; j < N; ++j) u[a * N + j] = f->p[pos[a] * N + j] - f->p[pos[0] * N + j];
+  double sum = 0.0;
+  for (size_t qq = 0; qq < r->np; ++qq) {
+    face_point(f, t, pos, m, r->bary + qq * (m + 1), X, lam, u); /* u_0 = X at the point */
+    sum += r->w[qq] * frame_eval(f, lam, u);
+  }
+  return sum;
+}
+
+gm_status gm_dec_interior_product(const gm_geometry *g, size_t k, const double *X,
+                                  const double *alpha, double *out, gm_error *err) {
+  gm_status st = check_field(g, k, 1, X, alpha, out, err);
+  if (st != GM_OK) return st;
+  return coface_average(g, k, k - 1, X, alpha, interior_integral, out, err);
+}
+
+/* d/dt ∫_{φ_t(face)} ω at t = 0: the directional derivative of ω along X on the edge vectors
+ * E_a, plus ω with one E_a replaced by its velocity dE_a = X(q_a) − X(q_0). */
+static double lie_flow_integral(const whitney_frame *f, const size_t *t, const size_t *pos,
+                                size_t k, const rule *r, const double *X) {
+  const size_t n = f->n, N = f->N;
+  double E[3 * GM_DEC_MAX_EMBED], dE[3 * GM_DEC_MAX_EMBED], u[3 * GM_DEC_MAX_EMBED];
+  for (size_t a = 1; a <= k; ++a)
+    for (size_t j = 0; j < N; ++j) {
+      E[(a - 1) * N + j] = f->p[pos[a] * N + j] - f->p[pos[0] * N + j];
+      dE[(a - 1) * N + j] = X[t[pos[a]] * N + j] - X[t[pos[0]] * N + j];
+    }
+  double sum = 0.0;
+  for (size_t qq = 0; qq < r->np; ++qq) {
+    double lam[GM_LOCAL_MAX], Xq[GM_DEC_MAX_EMBED], dlam[GM_LOCAL_MAX];
+    face_point(f, t, pos, k, r->bary + qq * (k + 1), X, lam, Xq);
+    for (size_t a = 0; a <= n; ++a) {
+      double s = 0.0;
+      for (size_t j = 0; j < N; ++j) s += f->grad[a * N + j] * Xq[j];
+      dlam[a] = s;
+    }
+    double val = frame_eval(f, dlam, E); /* (D_X ω)(E_1..E_k) */
+    for (size_t a = 0; a < k; ++a) {     /* Σ_a ω(E_1..dE_a..E_k) */
+      memcpy(u, E, k * N * sizeof(double));
+      memcpy(u + a * N, dE + a * N, N * sizeof(double));
+      val += frame_eval(f, lam, u);
+    }
+    sum += r->w[qq] * val;
+  }
+  return sum;
+}
+
 gm_status gm_dec_lie_derivative(const gm_geometry *g, size_t k, const double *X,
                                 const double *alpha, gm_lie_method method, double *out,
                                 gm_error *err) {
   gm_status st = check_field(g, k, 0, X, alpha, out, err);
   if (st != GM_OK) return st;
-  if (method == GM_LIE_ALGEBRAIC) return lie_flow(g, k, X, alpha, out, err);
+  if (method == GM_LIE_ALGEBRAIC)
+    return coface_average(g, k, k, X, alpha, lie_flow_integral, out, err);
   if (method != GM_LIE_CARTAN) return gm_error_set(err, GM_EINVAL, "unknown Lie derivative method");
   const gm_complex *cx = g->cx;
   const size_t n = cx->n, nk = cx->count[k];
