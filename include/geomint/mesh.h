@@ -84,6 +84,13 @@ gm_status gm_mesh_torus(double R, double r, size_t n_major, size_t n_minor, gm_m
  * non-simplicial element types, binary files. Counts are checked against the file size before
  * any allocation. *out is owned by the caller. */
 gm_status gm_mesh_read(const char *path, gm_mesh **out, gm_error *err);
+/* The readers load the file into memory, at most GM_MESH_MAX_FILE_BYTES (1 GiB, about 10^7
+ * tetrahedra) by default; a larger file, or a stream that goes on past it, is GM_EIO "FILE: ... more than the limit of N bytes". gm_mesh_read_max reads by
+ * extension with another limit. A NUL byte is GM_EINVAL at once: mesh files are text. Words are
+ * never cut (a word of more than 127 characters is an error) and bytes other than printable ASCII
+ * are shown as \xNN in messages. */
+#define GM_MESH_MAX_FILE_BYTES ((size_t)1 << 30)
+gm_status gm_mesh_read_max(const char *path, size_t max_bytes, gm_mesh **out, gm_error *err);
 gm_status gm_mesh_read_msh(const char *path, gm_mesh **out, gm_error *err);
 gm_status gm_mesh_read_off(const char *path, gm_mesh **out, gm_error *err);
 /* The same parsers on a buffer of `size` bytes (need not be NUL-terminated); messages start

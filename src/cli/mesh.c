@@ -1,6 +1,7 @@
 /* geomint mesh info FILE [--json] | geomint mesh poisson FILE [--out FILE.vtu]: read a mesh (Gmsh
  * .msh or OFF), report its topology and quality, or solve a manufactured Poisson problem on it. */
 #include <cJSON.h>
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,11 +21,40 @@ static const char usage[] =
     "           error (a quick check that a mesh is fit for DEC)\n\n"
     "options:\n"
     "  --json       (info) print one JSON object\n"
-    "  --out FILE   (poisson) write the mesh with u_h, u and the error to a .vtu file\n\n"
+    "  --out FILE   (poisson) write the mesh with u_h, u and the error to a .vtu file\n"
+    "  --max-file-size SIZE  refuse files larger than SIZE bytes (suffix K, M, G: powers of\n"
+    "               1024; default 1G); a NUL byte (a binary file, /dev/zero) is refused at once\n\n"
     "Exit status: 0 success (info: also for a mesh with defects, which are reported), 1 the\n"
     "file cannot be read or the problem cannot be solved, 2 bad arguments.\n";
 
 static const char *const names[] = {"vertices", "edges", "faces", "cells"};
+
+/* --max-file-size: bytes, with an optional K, M or G (powers of 1024); 0 when not a size. */
+static size_t parse_size(const char *text) {
+  char *end = NULL;
+  errno = 0;
+  double v = strtod(text, &end);
+  if (end == text || errno == ERANGE || !(v >= 1.0)) return 0;
+  double unit = 1.0;
+  if (*end == 'K' || *end == 'k') unit = 1024.0, ++end;
+  else if (*end == 'M' || *end == 'm') unit = 1024.0 * 1024.0, ++end;
+  else if (*end == 'G' || *end == 'g') unit = 1024.0 * 1024.0 * 1024.0, ++end;
+  if (*end != '\0' || !(v * unit < 0x1p62)) return 0;
+  return (size_t)(v * unit);
+}
+
+static size_t max_file_bytes = GM_MESH_MAX_FILE_BYTES;
+
+/* Read a mesh; on failure print one line (with how to raise the size limit when that was hit). */
+static int read_mesh(const char *path, gm_mesh **m) {
+  gm_error err = {{0}};
+  if (gm_mesh_read_max(path, max_file_bytes, m, &err) == GM_OK) return 0;
+  if (strstr(err.message, "more than the limit of") != NULL)
+    cli_error("mesh", "%s (raise it with --max-file-size)", err.message);
+  else
+    cli_error("mesh", "%s", err.message);
+  return 1;
+}
 
 static void print_info(const char *path, const gm_mesh_report *r) {
   printf("mesh %s: %zu-simplices in R^%zu\n", path, r->dim, r->N);
@@ -118,10 +148,7 @@ static int info_json(const char *path, const gm_mesh_report *r) {
 static int mesh_info(const char *path, int json) {
   gm_mesh *m = NULL;
   gm_error err = {{0}};
-  if (gm_mesh_read(path, &m, &err) != GM_OK) {
-    cli_error("mesh", "%s", err.message);
-    return CLI_EXIT_FAILURE;
-  }
+  if (read_mesh(path, &m) != 0) return CLI_EXIT_FAILURE;
   gm_mesh_report r;
   gm_status st = gm_mesh_quality(m, &r, &err);
   gm_mesh_free(m);
@@ -137,10 +164,7 @@ static int mesh_info(const char *path, int json) {
 static int mesh_poisson(const char *path, const char *out) {
   gm_mesh *m = NULL;
   gm_error err = {{0}};
-  if (gm_mesh_read(path, &m, &err) != GM_OK) {
-    cli_error("mesh", "%s", err.message);
-    return CLI_EXIT_FAILURE;
-  }
+  if (read_mesh(path, &m) != 0) return CLI_EXIT_FAILURE;
   gm_poisson_report rep;
   double *u = malloc(m->n_vertices * sizeof(double));
   if (u == NULL) {
@@ -205,16 +229,24 @@ static int mesh_poisson(const char *path, const char *out) {
 
 static int mesh_main(int argc, char **argv) {
   int json = 0;
-  const char *out = NULL;
-  cli_option options[] = {{"--json", CLI_ARG_FLAG, &json, 0}, {"--out", CLI_ARG_STRING, &out, 0}};
+  const char *out = NULL, *max_size = NULL;
+  cli_option options[] = {{"--json", CLI_ARG_FLAG, &json, 0},
+                          {"--out", CLI_ARG_STRING, &out, 0},
+                          {"--max-file-size", CLI_ARG_STRING, &max_size, 0}};
   const char *pos[2];
   size_t n_pos = 0;
-  int status = cli_parse("mesh", argc, argv, options, 2, pos, 2, &n_pos);
+  int status = cli_parse("mesh", argc, argv, options, sizeof options / sizeof options[0], pos, 2,
+                         &n_pos);
   if (status == CLI_HELP) {
     fputs(usage, stdout);
     return CLI_EXIT_OK;
   }
   if (status != CLI_EXIT_OK) return status;
+  if (max_size != NULL && (max_file_bytes = parse_size(max_size)) == 0) {
+    cli_error("mesh", "--max-file-size %s: expected a size in bytes such as 4096, 64M or 2G",
+              max_size);
+    return CLI_EXIT_USAGE;
+  }
   if (n_pos < 2) {
     cli_error("mesh", "expected 'info FILE' or 'poisson FILE' (see geomint mesh --help)");
     return CLI_EXIT_USAGE;

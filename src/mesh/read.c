@@ -8,8 +8,12 @@
  * are skipped; any other element type is an error. Nodes used by no cell are dropped. The
  * embedding dimension is the cell dimension raised to cover every non-zero coordinate (a flat
  * triangle mesh with z = 0 is 2-D, a surface is 3-D). Counts are checked against the size of the
- * file before anything is allocated, so a corrupt count cannot request a huge allocation. */
+ * file before anything is allocated, so a corrupt count cannot request a huge allocation; the file
+ * itself is read up to a size limit. Words are never cut (a word longer than TOKEN_MAX − 1 is an
+ * error) and words from the file are escaped in messages. */
 #include <errno.h>
+#include <inttypes.h>
+#include <sys/stat.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,30 +22,62 @@
 #include "core/internal.h"
 #include "geomint/mesh.h"
 
+#define TOKEN_MAX 128 /* longest word, NUL included: a longer one is an error, never cut */
+
 typedef struct {
   const char *p, *end;
   size_t line;
   gm_error *err;
-  char tok[64];
+  char tok[TOKEN_MAX];
+  char shown[4 * 40 + 8]; /* tok as messages show it (see show_token) */
 } lexer;
 
+static int is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
+}
+
 static void skip_space(lexer *lx) {
-  while (lx->p < lx->end && (*lx->p == ' ' || *lx->p == '\t' || *lx->p == '\r' || *lx->p == '\n' ||
-                             *lx->p == '\f' || *lx->p == '\v')) {
+  while (lx->p < lx->end && is_space(*lx->p)) {
     if (*lx->p == '\n') ++lx->line;
     ++lx->p;
   }
 }
 
-/* Next whitespace-separated token into lx->tok (truncated to 63 chars); 0 at end of input. */
+/* Text from the file as messages show it: at most 40 bytes, printable ASCII as is, every other
+ * byte (control characters, escape sequences, non-ASCII) as \xNN, so a file cannot write to the
+ * user's terminal through an error message; "..." when cut. out holds 4 * 40 + 8 bytes. */
+static const char *escape_text(const char *in, char *out) {
+  size_t w = 0, i = 0;
+  for (; in[i] != '\0' && i < 40; ++i) {
+    unsigned char c = (unsigned char)in[i];
+    if (c >= 0x20 && c < 0x7f && c != '\\') out[w++] = (char)c;
+    else w += (size_t)snprintf(out + w, 5, "\\x%02x", c);
+  }
+  if (in[i] != '\0') memcpy(out + w, "...", 3), w += 3;
+  out[w] = '\0';
+  return out;
+}
+
+static const char *show_token(lexer *lx) { return escape_text(lx->tok, lx->shown); }
+
+static gm_status too_long(lexer *lx) {
+  return gm_error_set(lx->err, GM_EINVAL, "line %zu: a word longer than %d characters ('%s')",
+                      lx->line, TOKEN_MAX - 1, show_token(lx));
+}
+
+/* Next whitespace-separated token into lx->tok; 0 at end of input, -1 (with the error set) for
+ * a word longer than TOKEN_MAX - 1 characters. */
 static int next_token(lexer *lx) {
   skip_space(lx);
   if (lx->p >= lx->end) return 0;
   size_t n = 0;
-  while (lx->p < lx->end && !(*lx->p == ' ' || *lx->p == '\t' || *lx->p == '\r' ||
-                              *lx->p == '\n' || *lx->p == '\f' || *lx->p == '\v')) {
-    if (n < sizeof lx->tok - 1) lx->tok[n++] = *lx->p;
-    ++lx->p;
+  while (lx->p < lx->end && !is_space(*lx->p)) {
+    if (n == sizeof lx->tok - 1) {
+      lx->tok[n] = '\0';
+      too_long(lx);
+      return -1;
+    }
+    lx->tok[n++] = *lx->p++;
   }
   lx->tok[n] = '\0';
   return 1;
@@ -51,12 +87,33 @@ static void skip_line(lexer *lx) {
   while (lx->p < lx->end && *lx->p != '\n') ++lx->p;
 }
 
+/* Spaces and tabs only: 1 when another word follows on the same line. */
+static int more_on_line(lexer *lx) {
+  while (lx->p < lx->end && (*lx->p == ' ' || *lx->p == '\t' || *lx->p == '\r' ||
+                             *lx->p == '\f' || *lx->p == '\v'))
+    ++lx->p;
+  return lx->p < lx->end && *lx->p != '\n' && *lx->p != '#';
+}
+
 static gm_status fail(lexer *lx, const char *what) {
   return gm_error_set(lx->err, GM_EINVAL, "line %zu: %s", lx->line, what);
 }
 
+/* Mesh files are text: a NUL byte anywhere (binary data, /dev/zero) is an error naming its line,
+ * found before parsing so no NUL can end a number early. */
+static gm_status check_text(lexer *lx) {
+  const char *nul = memchr(lx->p, '\0', (size_t)(lx->end - lx->p));
+  if (nul == NULL) return GM_OK;
+  size_t line = 1;
+  for (const char *q = lx->p; q < nul; ++q) line += *q == '\n';
+  return gm_error_set(lx->err, GM_EINVAL, "line %zu: a NUL byte (binary data): not a text mesh file",
+                      line);
+}
+
 static gm_status expect_token(lexer *lx, const char *what) {
-  if (!next_token(lx))
+  int got = next_token(lx);
+  if (got < 0) return GM_EINVAL;
+  if (got == 0)
     return gm_error_set(lx->err, GM_EINVAL, "line %zu: unexpected end of file (expected %s)",
                         lx->line, what);
   return GM_OK;
@@ -70,7 +127,7 @@ static gm_status read_long(lexer *lx, const char *what, long long *v) {
   long long x = strtoll(lx->tok, &e, 10);
   if (e == lx->tok || *e != '\0' || errno == ERANGE)
     return gm_error_set(lx->err, GM_EINVAL, "line %zu: expected an integer (%s), found '%s'",
-                        lx->line, what, lx->tok);
+                        lx->line, what, show_token(lx));
   *v = x;
   return GM_OK;
 }
@@ -97,10 +154,10 @@ static gm_status read_double(lexer *lx, const char *what, double *v) {
   double x = strtod(lx->tok, &e);
   if (e == lx->tok || *e != '\0')
     return gm_error_set(lx->err, GM_EINVAL, "line %zu: expected a number (%s), found '%s'",
-                        lx->line, what, lx->tok);
+                        lx->line, what, show_token(lx));
   if (!isfinite(x))
     return gm_error_set(lx->err, GM_EDOMAIN, "line %zu: %s is not finite ('%s')", lx->line, what,
-                        lx->tok);
+                        show_token(lx));
   *v = x;
   return GM_OK;
 }
@@ -110,7 +167,7 @@ static gm_status expect_word(lexer *lx, const char *word) {
   if (st != GM_OK) return st;
   if (strcmp(lx->tok, word) != 0)
     return gm_error_set(lx->err, GM_EINVAL, "line %zu: expected %s, found '%s'", lx->line, word,
-                        lx->tok);
+                        show_token(lx));
   return GM_OK;
 }
 
@@ -121,6 +178,7 @@ typedef struct {
   long long *node_tag; /* sorted after reading */
   size_t *node_order;  /* node index of each sorted tag */
   double *xyz;         /* 3 per node */
+  size_t *node_line;   /* line of each node's tag, for errors */
   size_t dim;          /* highest cell dimension seen */
   size_t n_cells, cap_cells;
   long long *cell_nodes; /* 4 per cell (tags) */
@@ -130,7 +188,7 @@ typedef struct {
 } raw_mesh;
 
 static void raw_free(raw_mesh *r) {
-  free(r->node_tag), free(r->node_order), free(r->xyz);
+  free(r->node_tag), free(r->node_order), free(r->xyz), free(r->node_line);
   free(r->cell_nodes), free(r->cell_line), free(r->cell_tag), free(r->cell_dim);
 }
 
@@ -138,7 +196,8 @@ static gm_status raw_nodes(raw_mesh *r, size_t n, gm_error *err) {
   r->node_tag = malloc((n ? n : 1) * sizeof(long long));
   r->node_order = malloc((n ? n : 1) * sizeof(size_t));
   r->xyz = malloc((n ? n : 1) * 3 * sizeof(double));
-  if (!r->node_tag || !r->node_order || !r->xyz)
+  r->node_line = malloc((n ? n : 1) * sizeof(size_t));
+  if (!r->node_tag || !r->node_order || !r->xyz || !r->node_line)
     return gm_error_set(err, GM_ENOMEM, "out of memory for %zu nodes", n);
   r->n_nodes = n;
   return GM_OK;
@@ -205,8 +264,10 @@ static gm_status raw_finish(raw_mesh *r, size_t line, gm_mesh **out, gm_error *e
   for (size_t i = 1; i < nn; ++i)
     if (sorted[i] == sorted[i - 1]) {
       long long t = sorted[i];
+      size_t a = r->node_line[r->node_order[i - 1]], b = r->node_line[r->node_order[i]];
       free(sorted);
-      return gm_error_set(err, GM_EINVAL, "line %zu: node %lld is defined twice", line, t);
+      return gm_error_set(err, GM_EINVAL, "line %zu: node %lld is defined twice (first on line %zu)",
+                          a > b ? a : b, t, a < b ? a : b);
     }
   size_t *map = malloc((nn ? nn : 1) * sizeof(size_t)); /* node index -> vertex or SIZE_MAX */
   if (map == NULL) {
@@ -310,12 +371,14 @@ static gm_status element_type(lexer *lx, long long type, size_t *nn, size_t *dim
 
 /* Skip to the line after "$End<name>". */
 static gm_status skip_section(lexer *lx, const char *name) {
-  char end[80];
+  char end[TOKEN_MAX + 8];
   snprintf(end, sizeof end, "$End%s", name);
-  while (next_token(lx))
+  int got;
+  while ((got = next_token(lx)) > 0)
     if (strcmp(lx->tok, end) == 0) return GM_OK;
+  if (got < 0) return GM_EINVAL;
   return gm_error_set(lx->err, GM_EINVAL, "line %zu: unexpected end of file: %s is missing",
-                      lx->line, end);
+                      lx->line, escape_text(end, lx->shown));
 }
 
 static gm_status msh22_nodes(lexer *lx, raw_mesh *r) {
@@ -324,6 +387,7 @@ static gm_status msh22_nodes(lexer *lx, raw_mesh *r) {
   if (st == GM_OK) st = raw_nodes(r, n, lx->err);
   for (size_t i = 0; i < n && st == GM_OK; ++i) {
     st = read_long(lx, "node tag", &r->node_tag[i]);
+    r->node_line[i] = lx->line;
     for (size_t j = 0; j < 3 && st == GM_OK; ++j) st = read_double(lx, "node coordinate", &r->xyz[3 * i + j]);
   }
   if (st == GM_OK) st = expect_word(lx, "$EndNodes");
@@ -421,7 +485,10 @@ static gm_status msh41_nodes(lexer *lx, raw_mesh *r) {
     if (st == GM_OK) st = read_count(lx, "nodes in block", &nb);
     if (st == GM_OK && param != 0) st = fail(lx, "parametric node coordinates are not supported");
     if (st == GM_OK && nb > n - w) st = fail(lx, "node blocks hold more nodes than the header says");
-    for (size_t i = 0; i < nb && st == GM_OK; ++i) st = read_long(lx, "node tag", &r->node_tag[w + i]);
+    for (size_t i = 0; i < nb && st == GM_OK; ++i) {
+      st = read_long(lx, "node tag", &r->node_tag[w + i]);
+      r->node_line[w + i] = lx->line;
+    }
     for (size_t i = 0; i < nb && st == GM_OK; ++i)
       for (size_t j = 0; j < 3 && st == GM_OK; ++j)
         st = read_double(lx, "node coordinate", &r->xyz[3 * (w + i) + j]);
@@ -484,22 +551,28 @@ static gm_status msh41_elements(lexer *lx, raw_mesh *r, const entities *e) {
 gm_status gm_mesh_parse_msh(const char *data, size_t size, gm_mesh **out, gm_error *err) {
   if (out == NULL || (data == NULL && size > 0)) return gm_error_set(err, GM_EINVAL, "NULL argument");
   *out = NULL;
-  lexer lx = {data, data + size, 1, err, {0}};
+  lexer lx = {data, data + size, 1, err, {0}, {0}};
   raw_mesh r;
   memset(&r, 0, sizeof r);
   entities ent;
   memset(&ent, 0, sizeof ent);
   int version = 0, have_nodes = 0, have_elements = 0;
-  gm_status st = GM_OK;
-  while (st == GM_OK && next_token(&lx)) {
+  gm_status st = check_text(&lx);
+  int got = 0;
+  while (st == GM_OK && (got = next_token(&lx)) != 0) {
+    if (got < 0) {
+      st = GM_EINVAL;
+      break;
+    }
     if (lx.tok[0] != '$') {
-      char msg[128];
-      snprintf(msg, sizeof msg, "expected a section header ($Name), found '%.40s'", lx.tok);
+      char msg[256];
+      snprintf(msg, sizeof msg, "expected a section header ($Name), found '%s'", show_token(&lx));
       st = fail(&lx, msg);
       break;
     }
-    char name[64];
-    snprintf(name, sizeof name, "%s", lx.tok + 1);
+    char name[TOKEN_MAX];
+    memcpy(name, lx.tok + 1, sizeof name - 1); /* tok holds at most TOKEN_MAX - 1 characters */
+    name[sizeof name - 1] = '\0';
     if (strcmp(name, "MeshFormat") == 0) {
       double v;
       long long ft, ds;
@@ -534,8 +607,8 @@ gm_status gm_mesh_parse_msh(const char *data, size_t size, gm_mesh **out, gm_err
       if (ent.tag[0] != NULL) st = fail(&lx, "a second $Entities section");
       else st = msh41_entities(&lx, &ent);
     } else if (strncmp(name, "End", 3) == 0) {
-      char msg[96];
-      snprintf(msg, sizeof msg, "unexpected %.60s", lx.tok);
+      char msg[256];
+      snprintf(msg, sizeof msg, "unexpected %s", show_token(&lx));
       st = fail(&lx, msg);
     } else {
       st = skip_section(&lx, name);
@@ -554,11 +627,13 @@ gm_status gm_mesh_parse_msh(const char *data, size_t size, gm_mesh **out, gm_err
 gm_status gm_mesh_parse_off(const char *data, size_t size, gm_mesh **out, gm_error *err) {
   if (out == NULL || (data == NULL && size > 0)) return gm_error_set(err, GM_EINVAL, "NULL argument");
   *out = NULL;
-  lexer lx = {data, data + size, 1, err, {0}};
+  lexer lx = {data, data + size, 1, err, {0}, {0}};
   raw_mesh r;
   memset(&r, 0, sizeof r);
-  /* comments: '#' to the end of the line, anywhere a token may start */
-  gm_status st = GM_OK;
+  /* comments: '#' to the end of the line, anywhere a token may start; a vertex (x y z) and a
+   * face (3 i j k) are one line each, so a missing number is blamed on its own line */
+  gm_status st = check_text(&lx);
+  if (st != GM_OK) return st;
 #define OFF_NEXT()                                          \
   do {                                                      \
     skip_space(&lx);                                        \
@@ -576,9 +651,22 @@ gm_status gm_mesh_parse_off(const char *data, size_t size, gm_mesh **out, gm_err
   if (st == GM_OK) st = raw_nodes(&r, nv, err);
   for (size_t i = 0; i < nv && st == GM_OK; ++i) {
     r.node_tag[i] = (long long)i;
+    OFF_NEXT();
+    r.node_line[i] = lx.line;
     for (size_t j = 0; j < 3 && st == GM_OK; ++j) {
-      OFF_NEXT();
+      if (j > 0 && !more_on_line(&lx)) {
+        char msg[128];
+        snprintf(msg, sizeof msg, "vertex %zu has %zu coordinate%s, expected 3 (x y z)", i, j,
+                 j == 1 ? "" : "s");
+        st = fail(&lx, msg);
+        break;
+      }
       st = read_double(&lx, "vertex coordinate", &r.xyz[3 * i + j]);
+    }
+    if (st == GM_OK && more_on_line(&lx)) {
+      char msg[128];
+      snprintf(msg, sizeof msg, "vertex %zu has more than 3 coordinates, expected 3 (x y z)", i);
+      st = fail(&lx, msg);
     }
   }
   for (size_t i = 0; i < nf && st == GM_OK; ++i) {
@@ -592,7 +680,13 @@ gm_status gm_mesh_parse_off(const char *data, size_t size, gm_mesh **out, gm_err
       st = fail(&lx, msg);
     }
     for (int j = 0; j < 3 && st == GM_OK; ++j) {
-      OFF_NEXT();
+      if (!more_on_line(&lx)) {
+        char msg[128];
+        snprintf(msg, sizeof msg, "face %zu has %d vertex index%s, expected 3", i, j,
+                 j == 1 ? "" : "es");
+        st = fail(&lx, msg);
+        break;
+      }
       st = read_long(&lx, "face vertex", &v[j]);
       if (st == GM_OK && (v[j] < 0 || (size_t)v[j] >= nv)) {
         char msg[128];
@@ -609,43 +703,71 @@ gm_status gm_mesh_parse_off(const char *data, size_t size, gm_mesh **out, gm_err
   return st;
 }
 
-static gm_status slurp(const char *path, char **data, size_t *size, gm_error *err) {
+/* Read the whole file, at most max_bytes: a regular file larger than that is refused before
+ * reading, a stream (pipe, device) when it passes the limit; a NUL byte stops reading at once
+ * (mesh files are text: /dev/zero fails on its first block). */
+static gm_status slurp(const char *path, size_t max_bytes, char **data, size_t *size, gm_error *err) {
   FILE *f = fopen(path, "rb");
   if (f == NULL) return gm_error_set(err, GM_EIO, "cannot open %s: %s", path, strerror(errno));
+  struct stat sb;
+  if (fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode) && (uintmax_t)sb.st_size > max_bytes) {
+    fclose(f);
+    return gm_error_set(err, GM_EIO,
+                        "%s: the file has %ju bytes, more than the limit of %zu bytes for a mesh "
+                        "file",
+                        path, (uintmax_t)sb.st_size, max_bytes);
+  }
   size_t cap = 1 << 16, n = 0;
   char *buf = malloc(cap);
+  gm_status st = GM_OK;
   while (buf != NULL) {
     size_t got = fread(buf + n, 1, cap - n, f);
+    const char *nul = memchr(buf + n, '\0', got);
     n += got;
+    if (nul != NULL) {
+      size_t line = 1;
+      for (const char *q = buf; q < nul; ++q) line += *q == '\n';
+      st = gm_error_set(err, GM_EINVAL, "%s: line %zu: a NUL byte (binary data): not a text mesh file",
+                        path, line);
+      break;
+    }
+    if (n > max_bytes) {
+      st = gm_error_set(err, GM_EIO, "%s: more than the limit of %zu bytes for a mesh file", path,
+                        max_bytes);
+      break;
+    }
     if (n < cap) break;
-    char *nb = realloc(buf, cap * 2);
+    size_t grow = cap * 2 > max_bytes + 1 ? max_bytes + 1 : cap * 2;
+    char *nb = realloc(buf, grow);
     if (nb == NULL) {
       free(buf);
       buf = NULL;
       break;
     }
     buf = nb;
-    cap *= 2;
+    cap = grow;
   }
   int bad = ferror(f);
   fclose(f);
   if (buf == NULL) return gm_error_set(err, GM_ENOMEM, "out of memory reading %s", path);
-  if (bad) {
+  if (st == GM_OK && bad) st = gm_error_set(err, GM_EIO, "error reading %s", path);
+  if (st != GM_OK) {
     free(buf);
-    return gm_error_set(err, GM_EIO, "error reading %s", path);
+    return st;
   }
   *data = buf;
   *size = n;
   return GM_OK;
 }
 
-static gm_status read_with(const char *path, gm_status (*parse)(const char *, size_t, gm_mesh **, gm_error *),
+static gm_status read_with(const char *path, size_t max_bytes,
+                           gm_status (*parse)(const char *, size_t, gm_mesh **, gm_error *),
                            gm_mesh **out, gm_error *err) {
   if (out == NULL || path == NULL) return gm_error_set(err, GM_EINVAL, "NULL argument");
   *out = NULL;
   char *data = NULL;
   size_t size = 0;
-  gm_status st = slurp(path, &data, &size, err);
+  gm_status st = slurp(path, max_bytes, &data, &size, err);
   if (st != GM_OK) return st;
   gm_error local = {{0}};
   st = parse(data, size, out, &local);
@@ -655,17 +777,23 @@ static gm_status read_with(const char *path, gm_status (*parse)(const char *, si
 }
 
 gm_status gm_mesh_read_msh(const char *path, gm_mesh **out, gm_error *err) {
-  return read_with(path, gm_mesh_parse_msh, out, err);
+  return read_with(path, GM_MESH_MAX_FILE_BYTES, gm_mesh_parse_msh, out, err);
 }
 
 gm_status gm_mesh_read_off(const char *path, gm_mesh **out, gm_error *err) {
-  return read_with(path, gm_mesh_parse_off, out, err);
+  return read_with(path, GM_MESH_MAX_FILE_BYTES, gm_mesh_parse_off, out, err);
+}
+
+gm_status gm_mesh_read_max(const char *path, size_t max_bytes, gm_mesh **out, gm_error *err) {
+  if (path == NULL) return gm_error_set(err, GM_EINVAL, "NULL path");
+  size_t n = strlen(path);
+  if (n >= 4 && strcmp(path + n - 4, ".msh") == 0)
+    return read_with(path, max_bytes, gm_mesh_parse_msh, out, err);
+  if (n >= 4 && strcmp(path + n - 4, ".off") == 0)
+    return read_with(path, max_bytes, gm_mesh_parse_off, out, err);
+  return gm_error_set(err, GM_EINVAL, "%s: unknown mesh file extension (.msh and .off are read)", path);
 }
 
 gm_status gm_mesh_read(const char *path, gm_mesh **out, gm_error *err) {
-  if (path == NULL) return gm_error_set(err, GM_EINVAL, "NULL path");
-  size_t n = strlen(path);
-  if (n >= 4 && strcmp(path + n - 4, ".msh") == 0) return gm_mesh_read_msh(path, out, err);
-  if (n >= 4 && strcmp(path + n - 4, ".off") == 0) return gm_mesh_read_off(path, out, err);
-  return gm_error_set(err, GM_EINVAL, "%s: unknown mesh file extension (.msh and .off are read)", path);
+  return gm_mesh_read_max(path, GM_MESH_MAX_FILE_BYTES, out, err);
 }

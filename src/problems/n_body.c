@@ -174,8 +174,15 @@ static int parse_numbers(char *line, double v[8], char *bad, size_t cap) {
     int separated = end != s && (*end == '\0' || *end == ' ' || *end == '\t' || *end == '\r' ||
                                  *end == '\n' || *end == '\v' || *end == '\f');
     if (!separated) {
-      size_t len = strcspn(s, " \t\r\n\v\f");
-      snprintf(bad, cap, "%.*s", (int)(len < 24 ? len : 24), s);
+      /* the word as the message shows it: at most 24 bytes, anything but printable ASCII as
+       * \xNN so a file cannot write escape sequences to the terminal */
+      size_t len = strcspn(s, " \t\r\n\v\f"), w = 0;
+      for (size_t i = 0; i < len && i < 24 && w + 5 < cap; ++i) {
+        unsigned char c = (unsigned char)s[i];
+        if (c >= 0x20 && c < 0x7f && c != '\\') bad[w++] = (char)c;
+        else w += (size_t)snprintf(bad + w, cap - w, "\\x%02x", c);
+      }
+      bad[w] = '\0';
       return -1;
     }
     if (count < 8) v[count] = x;
@@ -185,24 +192,60 @@ static int parse_numbers(char *line, double v[8], char *bad, size_t cap) {
   }
 }
 
+/* Limits of a file of bodies: a line holds 7 numbers and a comment, so 4096 bytes is plenty; the
+ * file is at most MAX_BODY_FILE_BYTES (256 MiB, over 10^6 bodies at %.17g), so an endless
+ * stream (/dev/zero, a pipe that never closes) is an error, not an endless read. */
+#define MAX_BODY_LINE 4096
+#define MAX_BODY_FILE_BYTES ((size_t)256 << 20)
+
+/* One line (without its '\n') into line[MAX_BODY_LINE + 1]: 1 read, 0 end of file, -1 too
+ * long, -2 a NUL byte. *total counts the bytes read so far. */
+static int read_body_line(FILE *f, char *line, size_t *total) {
+  size_t n = 0;
+  int c;
+  while ((c = getc(f)) != EOF) {
+    ++*total;
+    if (c == '\n') break;
+    if (c == '\0') return -2;
+    if (n == MAX_BODY_LINE) return -1;
+    line[n++] = (char)c;
+  }
+  line[n] = '\0';
+  return c == EOF && n == 0 ? 0 : 1;
+}
+
 static gm_status read_bodies(n_body *nb, const char *path, double softening, char *errmsg,
                              size_t cap) {
   FILE *f = fopen(path, "r");
   if (f == NULL)
     return gm_fail(errmsg, cap, GM_EIO, "n-body: cannot open '%s': %s", path, strerror(errno));
-  char *line = NULL;
-  size_t line_cap = 0, n = 0, n_alloc = 0, line_no = 0;
+  char *line = malloc(MAX_BODY_LINE + 1);
+  size_t n = 0, n_alloc = 0, line_no = 0, total = 0;
   size_t *body_line = NULL;
-  gm_status st = GM_OK;
-  ssize_t got;
-  while ((got = getline(&line, &line_cap, f)) != -1) {
+  gm_status st = line != NULL ? GM_OK : gm_fail(errmsg, cap, GM_ENOMEM, "n-body: out of memory");
+  int got;
+  while (st == GM_OK && (got = read_body_line(f, line, &total)) != 0) {
     ++line_no;
-    if (memchr(line, '\0', (size_t)got) != NULL) {
-      st = gm_fail(errmsg, cap, GM_EINVAL, "n-body: %s:%zu: not a text file", path, line_no);
+    if (got == -2) {
+      st = gm_fail(errmsg, cap, GM_EINVAL, "n-body: %s:%zu: a NUL byte: not a text file", path,
+                   line_no);
+      break;
+    }
+    if (got == -1) {
+      st = gm_fail(errmsg, cap, GM_EINVAL,
+                   "n-body: %s:%zu: a line longer than %d bytes (one body per line: m x y z vx "
+                   "vy vz)",
+                   path, line_no, MAX_BODY_LINE);
+      break;
+    }
+    if (total > MAX_BODY_FILE_BYTES) {
+      st = gm_fail(errmsg, cap, GM_EINVAL,
+                   "n-body: %s: more than %zu bytes, the limit for a file of bodies", path,
+                   MAX_BODY_FILE_BYTES);
       break;
     }
     double v[8];
-    char bad[32];
+    char bad[4 * 24 + 8];
     int count = parse_numbers(line, v, bad, sizeof bad);
     if (count == 0) continue;
     if (count < 0) {
