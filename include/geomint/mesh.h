@@ -137,6 +137,10 @@ typedef struct gm_mesh_report {
   int complex_ok, geometry_ok;          /* 0: the reason is in the message below */
   char complex_error[GM_ERRMSG_SIZE];   /* e.g. non-manifold, not orientable, index out of range */
   char geometry_error[GM_ERRMSG_SIZE];  /* e.g. a degenerate cell */
+  size_t out_of_range;  /* cells whose volume (edge^n) overflows or underflows double precision
+                           (coordinates of 1e160 or 1e-160): not in min/max_volume, and no
+                           geometry (geometry_error says so). Edges and the degenerate and
+                           well-centred tests are computed on each cell scaled to unit size. */
 } gm_mesh_report;
 
 /* Fill the report. A mesh that is not a valid complex is not an error here: complex_ok = 0 and

@@ -84,7 +84,11 @@ static void print_info(const char *path, const gm_mesh_report *r) {
   if (r->geometry_ok) printf("  %-28s %zu\n", "inverted cells", r->inverted);
   printf("  %-28s %zu\n", "not well-centred cells", r->not_well_centred);
   printf("  %-28s %.6g / %.6g\n", "shortest / longest edge", r->shortest_edge, r->longest_edge);
-  printf("  %-28s %.6g / %.6g\n", "smallest / largest cell", r->min_volume, r->max_volume);
+  if (r->out_of_range > 0)
+    printf("  %-28s %zu cells outside double precision (rescale the mesh)\n", "cell volumes",
+           r->out_of_range);
+  else
+    printf("  %-28s %.6g / %.6g\n", "smallest / largest cell", r->min_volume, r->max_volume);
   if (r->geometry_ok) {
     for (size_t k = 0; k <= r->dim; ++k) {
       char label[64];
@@ -133,6 +137,7 @@ static int info_json(const char *path, const gm_mesh_report *r) {
   cJSON_AddItemToObject(o, "longest_edge", cli_json_number(r->longest_edge));
   cJSON_AddItemToObject(o, "min_volume", cli_json_number(r->min_volume));
   cJSON_AddItemToObject(o, "max_volume", cli_json_number(r->max_volume));
+  cJSON_AddNumberToObject(o, "volumes_out_of_range", (double)r->out_of_range);
   cJSON_AddBoolToObject(o, "geometry", r->geometry_ok != 0);
   if (r->geometry_ok) {
     cJSON_AddNumberToObject(o, "inverted", (double)r->inverted);

@@ -119,15 +119,36 @@ double gm_local_circumcenter(size_t N, size_t m, const double *p, double *c, dou
   if (m == 1) {
     for (size_t j = 0; j < N; ++j) c[j] = 0.5 * (p[j] + p[N + j]);
     bary[0] = bary[1] = 0.5;
-    double d2 = 0.0;
-    for (size_t j = 0; j < N; ++j) d2 += (p[N + j] - p[j]) * (p[N + j] - p[j]);
-    return sqrt(d2);
+    double span = 0.0, d2 = 0.0; /* scaled by a power of two, as below */
+    for (size_t j = 0; j < N; ++j) span = fmax(span, fabs(p[N + j] - p[j]));
+    if (!(span > 0.0) || !isfinite(span)) return span;
+    int ex;
+    frexp(span, &ex);
+    const double scale = ldexp(1.0, ex);
+    for (size_t j = 0; j < N; ++j) {
+      double d = (p[N + j] - p[j]) / scale;
+      d2 += d * d;
+    }
+    return sqrt(d2) * scale;
   }
   double a[3] = {0, 0, 0};
   double vol;
   if (N <= 3) {
     double e[3][3], r[3], t[3], u[3], n[3];
     edges3(N, m, p, e);
+    /* Work on the edges divided by a power of two near their size: exact, so ordinary simplices
+     * give bitwise the same numbers, while |a|², |a × b|² and the volume no longer overflow or
+     * underflow for coordinates of 1e100 (or 1e-100); the volume is scaled back at the end. */
+    double span = 0.0;
+    for (size_t i = 0; i < m; ++i)
+      for (size_t j = 0; j < 3; ++j) span = fmax(span, fabs(e[i][j]));
+    if (!(span > 0.0) || !isfinite(span)) return 0.0;
+    int ex;
+    frexp(span, &ex);
+    const double scale = ldexp(1.0, ex);
+    for (size_t i = 0; i < m; ++i)
+      for (size_t j = 0; j < 3; ++j) e[i][j] /= scale;
+    const double volume_scale = m == 2 ? scale * scale : scale * scale * scale;
     if (m == 2) {
       cross3(e[0], e[1], n);
       double nn = dot3(n, n);
@@ -141,6 +162,7 @@ double gm_local_circumcenter(size_t N, size_t m, const double *p, double *c, dou
       a[0] = dot3(u, n) / nn;
       cross3(e[0], r, u);
       a[1] = dot3(u, n) / nn;
+      vol *= volume_scale;
     } else {
       double bc[3], ca[3], ab[3];
       cross3(e[1], e[2], bc);
@@ -154,6 +176,7 @@ double gm_local_circumcenter(size_t N, size_t m, const double *p, double *c, dou
       a[0] = dot3(r, bc) / D;
       a[1] = dot3(r, ca) / D;
       a[2] = dot3(r, ab) / D;
+      vol *= volume_scale;
     }
   } else {
     double g[3][3], r[3];

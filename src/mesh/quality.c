@@ -1,6 +1,7 @@
 /* Mesh quality report behind `geomint mesh info`: counts, χ, Betti numbers, boundary, and the
  * defects a DEC computation cares about. Everything that can be counted is counted, also when
  * the complex or its geometry cannot be built (then the reason is kept in the report). */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -64,7 +65,11 @@ gm_status gm_mesh_quality(const gm_mesh *mesh, gm_mesh_report *r, gm_error *err)
   r->shortest_edge = INFINITY;
   gm_status st = count_non_manifold(mesh, &r->non_manifold);
   if (st != GM_OK) return gm_error_set(err, st, "out of memory");
-  /* per-cell geometry: degenerate, not well-centred, extreme volumes and edges */
+  /* per-cell geometry: degenerate, not well-centred, extreme volumes and edges. Each cell is
+   * divided by s, the power of two just above its largest coordinate difference, before the
+   * local geometry is computed, so edges and shape tests are right for coordinates of 1e160 or
+   * 1e-160 (whose squared lengths overflow or underflow); the volume is vol(scaled) s^n, and a
+   * cell whose true volume is outside double precision is counted in out_of_range. */
   double p[GM_LOCAL_MAX * GM_DEC_MAX_EMBED], c[GM_DEC_MAX_EMBED], bary[GM_LOCAL_MAX];
   for (size_t t = 0; t < mesh->n_cells; ++t) {
     int bad_index = 0;
@@ -74,6 +79,20 @@ gm_status gm_mesh_quality(const gm_mesh *mesh, gm_mesh_report *r, gm_error *err)
       else memcpy(p + i * N, mesh->x + v * N, N * sizeof(double));
     }
     if (bad_index) continue;
+    double span = 0.0;
+    for (size_t i = 1; i < kp; ++i)
+      for (size_t q = 0; q < N; ++q) span = fmax(span, fabs(p[i * N + q] - p[q]));
+    if (!(span > 0.0) || !isfinite(span)) { /* coincident vertices, or a difference past DBL_MAX */
+      if (span == 0.0) r->shortest_edge = 0.0;
+      else r->longest_edge = INFINITY, ++r->out_of_range;
+      ++r->degenerate;
+      continue;
+    }
+    /* a power of two, so scaling is exact and ordinary meshes get bitwise the old numbers */
+    int ex;
+    frexp(span, &ex);
+    const double scale = ldexp(1.0, ex);
+    for (size_t i = 0; i < kp * N; ++i) p[i] /= scale;
     double vol = gm_local_circumcenter(N, n, p, c, bary);
     double L = 0.0;
     for (size_t i = 0; i < kp; ++i)
@@ -82,16 +101,21 @@ gm_status gm_mesh_quality(const gm_mesh *mesh, gm_mesh_report *r, gm_error *err)
         for (size_t q = 0; q < N; ++q) d2 += (p[i * N + q] - p[j * N + q]) * (p[i * N + q] - p[j * N + q]);
         double e = sqrt(d2);
         if (e > L) L = e;
-        if (e < r->shortest_edge) r->shortest_edge = e;
+        if (e * scale < r->shortest_edge) r->shortest_edge = e * scale;
       }
-    if (L > r->longest_edge) r->longest_edge = L;
+    if (L * scale > r->longest_edge) r->longest_edge = L * scale;
     double Ln = n == 1 ? L : n == 2 ? L * L : L * L * L;
     if (!(vol > 1e-12 * Ln)) {
       ++r->degenerate;
       continue;
     }
-    if (vol < r->min_volume) r->min_volume = vol;
-    if (vol > r->max_volume) r->max_volume = vol;
+    vol *= n == 1 ? scale : n == 2 ? scale * scale : scale * scale * scale;
+    if (!isfinite(vol) || vol < DBL_MIN) {
+      ++r->out_of_range;
+    } else {
+      if (vol < r->min_volume) r->min_volume = vol;
+      if (vol > r->max_volume) r->max_volume = vol;
+    }
     for (size_t i = 0; i < kp; ++i)
       if (!(bary[i] > 0.0)) {
         ++r->not_well_centred;
@@ -116,6 +140,14 @@ gm_status gm_mesh_quality(const gm_mesh *mesh, gm_mesh_report *r, gm_error *err)
   r->euler_characteristic = gm_complex_euler_characteristic(cx);
   r->betti_known = gm_complex_betti_numbers(cx, r->betti) == GM_OK;
   r->reoriented = gm_complex_reoriented_count(cx);
+  if (r->out_of_range > 0) { /* the Hodge stars would overflow or underflow as well */
+    snprintf(r->geometry_error, sizeof r->geometry_error,
+             "%zu cells have volumes outside double precision (edges from %.3g to %.3g): "
+             "rescale the mesh",
+             r->out_of_range, r->shortest_edge, r->longest_edge);
+    gm_complex_free(cx);
+    return GM_OK;
+  }
   gm_geometry_options o = gm_geometry_defaults();
   o.allow_inverted = 1;
   gm_geometry *g = NULL;

@@ -1,10 +1,12 @@
 /* The problem library: definitions by name, parameters, initial values and building. */
 #include <ctype.h>
+#include <fenv.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "geomint/variational.h"
 #include "problems/internal.h"
 
 static const gm_model_def *const defs[] = {
@@ -183,6 +185,84 @@ gm_status gm_model_set_text(gm_model *m, const char *name, const char *value) {
   return unknown_parameter(m, name);
 }
 
+/* A constrained Lagrangian problem starts on its constraint manifold: g(q0) = 0 and v0 tangent,
+ * (∂g/∂q) v0 = 0 (v0 from the Legendre transform of p0). Each row i is held to a relative
+ * tolerance, |g_i| <= tol |∂g_i/∂q| |q| and |(∂g_i/∂q) v| <= tol |∂g_i/∂q| |v|, so positions typed
+ * to 10 digits pass and a state the integrator would have to project (q1=5 on a unit sphere) is
+ * an error rather than a silent jump in energy. */
+#define CONSTRAINT_START_TOL 1e-9
+
+static double norm2(const double *x, size_t n) {
+  double s = 0.0;
+  for (size_t i = 0; i < n; ++i) s += x[i] * x[i];
+  return sqrt(s);
+}
+
+static gm_status check_on_manifold(gm_model *m) {
+  const gm_problem *pb = &m->problem;
+  if (pb->kind != GM_PROBLEM_LAGRANGIAN || pb->n_constraints == 0) return GM_OK;
+  const size_t d = pb->dim, nc = pb->n_constraints;
+  const char *name = m->def->info.name;
+  const double *q = m->y0, *p = m->y0 + d;
+  double *buf = malloc((nc + nc * d + d) * sizeof *buf);
+  if (buf == NULL) return gm_fail(m->errmsg, sizeof m->errmsg, GM_ENOMEM, "out of memory");
+  double *g = buf, *jac = g + nc, *v = jac + nc * d;
+  gm_status st = GM_OK;
+  if (pb->constraint(pb->ctx, q, g) != 0 || pb->constraint_jacobian(pb->ctx, q, jac) != 0) {
+    st = gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                 "%s: the constraint cannot be evaluated at the initial positions", name);
+  } else if (gm_lagrangian_velocity(pb, q, p, v) != GM_OK) {
+    st = gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                 "%s: no velocity has the initial momenta (the Legendre transform failed)", name);
+  }
+  const double nq = norm2(q, d), nv = st == GM_OK ? norm2(v, d) : 0.0;
+  for (size_t i = 0; i < nc && st == GM_OK; ++i) {
+    const double *row = jac + i * d, nrow = norm2(row, d);
+    double gv = 0.0;
+    for (size_t j = 0; j < d; ++j) gv += row[j] * v[j];
+    if (!(fabs(g[i]) <= CONSTRAINT_START_TOL * nrow * nq))
+      st = gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                   "%s: the initial positions are off the constraint manifold: constraint %zu is "
+                   "g = %.3g, not 0 (relative tolerance %g); set positions on it or leave q at its "
+                   "default",
+                   name, i + 1, g[i], CONSTRAINT_START_TOL);
+    else if (!(fabs(gv) <= CONSTRAINT_START_TOL * nrow * nv))
+      st = gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                   "%s: the initial velocity is not tangent to the constraint manifold: "
+                   "(dg%zu/dq)·v = %.3g, not 0 (relative tolerance %g); set momenta tangent to it "
+                   "or leave p at its default",
+                   name, i + 1, gv, CONSTRAINT_START_TOL);
+  }
+  free(buf);
+  return st;
+}
+
+/* The parameter or initial value farthest from 1 in magnitude (|log10 |x||, zero excluded), as
+ * "name = value" in buf; 0 when every value is 0. */
+static int most_extreme(const gm_model *m, char *buf, size_t cap) {
+  const gm_model_info *info = &m->def->info;
+  double worst = -1.0;
+  for (size_t i = 0; i < info->n_params; ++i) {
+    double x = m->params[i];
+    if (info->params[i].type != GM_PARAM_NUMBER || x == 0.0) continue;
+    double e = fabs(log10(fabs(x)));
+    if (e > worst) worst = e, snprintf(buf, cap, "%s = %g", info->params[i].name, x);
+  }
+  const size_t n = gm_problem_state_size(&m->problem), d = m->problem.dim;
+  const int qp = gm_problem_has_momenta(&m->problem);
+  for (size_t i = 0; i < n; ++i) {
+    double x = m->y0[i];
+    if (x == 0.0) continue;
+    double e = fabs(log10(fabs(x)));
+    if (e > worst) {
+      worst = e;
+      if (qp) snprintf(buf, cap, "%c%zu = %g", i < d ? 'q' : 'p', (i < d ? i : i - d) + 1, x);
+      else snprintf(buf, cap, "y%zu = %g", i + 1, x);
+    }
+  }
+  return worst >= 0.0;
+}
+
 gm_status gm_model_build(gm_model *m) {
   if (m == NULL) return GM_EINVAL;
   const gm_model_def *def = m->def;
@@ -224,18 +304,38 @@ gm_status gm_model_build(gm_model *m) {
     if (def->initial_changed == NULL || !def->initial_changed(m->ctx, m->y0))
       m->problem.exact = NULL;
   }
+  st = check_on_manifold(m);
+  if (st != GM_OK) return st;
   /* An initial state where the energy or an invariant is not finite (a collision, a log of a
-   * non-positive population) is no state the problem can start from. */
-  if (gm_problem_has_energy(&m->problem) && !isfinite(gm_problem_energy(&m->problem, m->y0)))
-    return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
-                   "%s: the energy of the initial state is %g (a singular point)", def->info.name,
-                   gm_problem_energy(&m->problem, m->y0));
-  for (size_t k = 0; k < m->problem.n_invariants; ++k) {
-    double v = m->problem.invariants[k].value(m->ctx, m->y0);
-    if (!isfinite(v))
+   * non-positive population) is no state the problem can start from; when the floating-point
+   * flags say the arithmetic overflowed or underflowed, the message says so and names the most
+   * extreme value instead of blaming a singular point. */
+  fexcept_t saved;
+  fegetexceptflag(&saved, FE_ALL_EXCEPT);
+  feclearexcept(FE_OVERFLOW | FE_UNDERFLOW);
+  const char *what = NULL;
+  double bad = 0.0;
+  if (gm_problem_has_energy(&m->problem)) {
+    bad = gm_problem_energy(&m->problem, m->y0);
+    if (!isfinite(bad)) what = "energy";
+  }
+  for (size_t k = 0; what == NULL && k < m->problem.n_invariants; ++k) {
+    bad = m->problem.invariants[k].value(m->ctx, m->y0);
+    if (!isfinite(bad)) what = m->problem.invariants[k].name;
+  }
+  const int range = fetestexcept(FE_OVERFLOW | FE_UNDERFLOW) != 0;
+  fesetexceptflag(&saved, FE_ALL_EXCEPT);
+  if (what != NULL) {
+    char extreme[96];
+    if (range && most_extreme(m, extreme, sizeof extreme))
       return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
-                     "%s: the invariant %s of the initial state is %g (a singular point)",
-                     def->info.name, m->problem.invariants[k].name, v);
+                     "%s: the %s of the initial state is not finite (%g): double precision "
+                     "overflows with these values (the most extreme: %s); use values nearer the "
+                     "problem's scale",
+                     def->info.name, what, bad, extreme);
+    return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                   "%s: the %s of the initial state is %g (a singular point)", def->info.name,
+                   what, bad);
   }
   m->built = 1;
   return GM_OK;

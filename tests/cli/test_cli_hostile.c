@@ -92,3 +92,83 @@ Test(cli_hostile, file_bytes_are_escaped_on_the_terminal) {
   expect_one_clean_line(r.err);
   run_output_free(&r);
 }
+
+/* Item 8: a constrained problem starts on its constraint manifold or not at all (exit 2); a
+ * state typed to 10 digits on it runs. Before, q1=5 was projected silently (energy error 1049 %). */
+Test(cli_hostile, state_off_the_constraint_manifold_is_refused) {
+  run_output r = run_cli("run spherical-pendulum --method vi-midpoint --set q1=5 --steps 10");
+  cr_expect_eq(r.status, 2);
+  cr_expect(strstr(r.err, "spherical-pendulum: the initial positions are off the constraint "
+                          "manifold: constraint 1 is g = 12.1, not 0") != NULL,
+            "%s", r.err);
+  expect_one_clean_line(r.err);
+  run_output_free(&r);
+  r = run_cli("run spherical-pendulum --method vi-midpoint --set p3=1 --steps 10 --json");
+  cr_expect_eq(r.status, 2);
+  cr_expect(strstr(r.err, "the initial velocity is not tangent to the constraint manifold") != NULL,
+            "%s", r.err);
+  run_output_free(&r);
+  r = run_cli("run double-spherical-pendulum --method vi-midpoint --set q6=0 --steps 10");
+  cr_expect_eq(r.status, 2);
+  cr_expect(strstr(r.err, "off the constraint manifold: constraint 2") != NULL, "%s", r.err);
+  run_output_free(&r);
+  /* theta0 = 0.5 typed by hand: sin 0.5 = 0.4794255386, -cos 0.5 = -0.8775825619, p along y */
+  r = run_cli("run spherical-pendulum --method vi-midpoint --set q1=0.4794255386 "
+              "--set q3=-0.8775825619 --set p2=0.9 --steps 100 --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  cr_expect_lt(json_number(o, "max_rel_energy_error"), 1e-4); /* measured 2.7e-5 */
+  cJSON_Delete(o);
+  run_output_free(&r);
+}
+
+/* Item 9: overflow is called overflow and names the value, a true singularity stays one. */
+Test(cli_hostile, overflow_is_not_a_singular_point) {
+  const char *cases[][2] = {
+      {"run fpu --set omega=1e300 --steps 1", "the energy of the initial state is not finite (-nan): "
+                                              "double precision overflows with these values (the "
+                                              "most extreme: omega = 1e+300)"},
+      {"run j2-satellite --set r0=1e-300 --steps 1", "(the most extreme: r0 = 1e-300)"},
+      {"run kepler --set q1=0 --set q2=0 --steps 1", "the energy of the initial state is -inf (a "
+                                                     "singular point)"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+    run_output r = run_cli("%s", cases[i][0]);
+    cr_expect_eq(r.status, 2, "%s", cases[i][0]);
+    cr_expect(strstr(r.err, cases[i][1]) != NULL, "%s: %s", cases[i][0], r.err);
+    if (i < 2) cr_expect(strstr(r.err, "singular") == NULL, "%s", r.err);
+    run_output_free(&r);
+  }
+}
+
+/* Item 9: a mesh with coordinates of 1e160 has edges of 1e160 and volumes past double: said so. */
+Test(cli_hostile, mesh_quality_far_from_unit_scale) {
+  FILE *f = fopen(path_in_tmp("huge.off"), "w");
+  cr_assert_not_null(f);
+  fputs("OFF\n4 2 0\n0 0 0\n1e160 0 0\n0 1e160 0\n1e160 1e160 0\n3 0 1 2\n3 1 3 2\n", f);
+  fclose(f);
+  run_output r = run_cli("mesh info huge.off --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  cr_expect(fabs(json_number(o, "shortest_edge") / 1e160 - 1) < 1e-15);
+  cr_expect(fabs(json_number(o, "longest_edge") / (sqrt(2.0) * 1e160) - 1) < 1e-15);
+  cr_expect_eq(json_number(o, "volumes_out_of_range"), 2);
+  cr_expect_eq(json_number(o, "degenerate"), 0);
+  cr_expect(strstr(json_string(o, "geometry_error"), "outside double precision") != NULL);
+  cJSON_Delete(o);
+  run_output_free(&r);
+  f = fopen(path_in_tmp("big.off"), "w");
+  cr_assert_not_null(f);
+  fputs("OFF\n4 2 0\n0 0 0\n1e100 0 0\n0 1e100 0\n1e100 1e100 0\n3 0 1 2\n3 1 3 2\n", f);
+  fclose(f);
+  r = run_cli("mesh info big.off --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  o = parse_json(r.out);
+  const cJSON *s0 = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "hodge_star_min"), 0);
+  cr_assert_not_null(s0);
+  cr_expect(fabs(s0->valuedouble / 0.25e200 - 1) < 1e-14, "star 0 = %g", s0->valuedouble);
+  const cJSON *neg = cJSON_GetArrayItem(cJSON_GetObjectItemCaseSensitive(o, "negative_duals"), 0);
+  cr_expect_eq(neg->valuedouble, 0);
+  cJSON_Delete(o);
+  run_output_free(&r);
+}

@@ -3,6 +3,7 @@
  * blamed on its own line, and the size limit of gm_mesh_read_max on a regular file, a stream and
  * /dev/zero. */
 #include <criterion/criterion.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -141,4 +142,65 @@ Test(mesh_hostile, size_limit) {
   EXPECT_MESSAGE(err, "line 1: a NUL byte");
   snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
   cr_expect_eq(system(cmd), 0);
+}
+
+/* Quality and Hodge stars of a mesh and of the same mesh scaled by s: every length scales by s,
+ * every k-volume by s^k, ⋆_k by s^(n−2k); with s = 2^±330 (2-D) or 2^265 (3-D) the squared
+ * lengths of the old code overflowed (negative duals, stars 0). */
+static void expect_scaled_report(gm_mesh *m, double s) {
+  gm_mesh_report a, b;
+  gm_error err = {{0}};
+  cr_assert_eq(gm_mesh_quality(m, &a, &err), GM_OK, "%s", err.message);
+  for (size_t i = 0; i < m->n_vertices * m->N; ++i) m->x[i] *= s;
+  cr_assert_eq(gm_mesh_quality(m, &b, &err), GM_OK, "%s", err.message);
+  const size_t n = m->dim;
+  cr_assert(a.geometry_ok && b.geometry_ok, "%s | %s", a.geometry_error, b.geometry_error);
+  cr_expect_eq(b.degenerate, a.degenerate);
+  cr_expect_eq(b.not_well_centred, a.not_well_centred);
+  cr_expect_eq(b.out_of_range, 0);
+  cr_expect(fabs(b.shortest_edge / (s * a.shortest_edge) - 1) < 1e-14, "%g", b.shortest_edge);
+  cr_expect(fabs(b.longest_edge / (s * a.longest_edge) - 1) < 1e-14, "%g", b.longest_edge);
+  cr_expect(fabs(b.max_volume / (pow(s, (double)n) * a.max_volume) - 1) < 1e-14, "%g", b.max_volume);
+  for (size_t k = 0; k <= n; ++k) {
+    cr_expect_eq(b.negative_duals[k], a.negative_duals[k], "k = %zu", k);
+    double f = pow(s, (double)n - 2.0 * (double)k);
+    cr_expect(fabs(b.star_max[k] / (f * a.star_max[k]) - 1) < 1e-12, "star %zu: %g vs %g", k,
+              b.star_max[k], f * a.star_max[k]);
+    if (a.star_min[k] > 0)
+      cr_expect(fabs(b.star_min[k] / (f * a.star_min[k]) - 1) < 1e-12, "star %zu min", k);
+  }
+}
+
+Test(mesh_hostile, quality_is_scale_invariant) {
+  gm_mesh *m = NULL;
+  gm_error err = {{0}};
+  cr_assert_eq(gm_mesh_rectangle(0, 1, 0, 1, 4, 4, GM_DIAGONAL_ACUTE, &m, &err), GM_OK);
+  expect_scaled_report(m, 0x1p330); /* 2.2e99: powers of two keep right angles exact */
+  gm_mesh_free(m);
+  cr_assert_eq(gm_mesh_rectangle(0, 1, 0, 1, 4, 4, GM_DIAGONAL_ACUTE, &m, &err), GM_OK);
+  expect_scaled_report(m, 0x1p-330);
+  gm_mesh_free(m);
+  const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+  cr_assert_eq(gm_mesh_box(lo, hi, 2, 2, 2, GM_BOX_KUHN, &m, &err), GM_OK);
+  expect_scaled_report(m, 0x1p265); /* 5.9e79 */
+  gm_mesh_free(m);
+}
+
+Test(mesh_hostile, volumes_outside_double_are_refused) {
+  for (int sign = -1; sign <= 1; sign += 2) {
+    const double s = sign > 0 ? 1e160 : 1e-160;
+    gm_mesh *m = NULL;
+    gm_error err = {{0}};
+    cr_assert_eq(gm_mesh_rectangle(0, s, 0, s, 2, 2, GM_DIAGONAL_RIGHT, &m, &err), GM_OK);
+    gm_mesh_report r;
+    cr_assert_eq(gm_mesh_quality(m, &r, &err), GM_OK);
+    cr_expect_eq(r.degenerate, 0, "scale %g", s);
+    cr_expect_eq(r.out_of_range, 8);
+    cr_expect(fabs(r.shortest_edge / (0.5 * s) - 1) < 1e-15, "%g", r.shortest_edge);
+    cr_expect(fabs(r.longest_edge / (sqrt(0.5) * s) - 1) < 1e-15, "%g", r.longest_edge);
+    cr_expect_eq(r.geometry_ok, 0);
+    cr_expect(strstr(r.geometry_error, "8 cells have volumes outside double precision") != NULL,
+              "%s", r.geometry_error);
+    gm_mesh_free(m);
+  }
 }
