@@ -304,7 +304,7 @@ gm_status gm_hodge_decomposition_create(const gm_geometry *g, size_t k,
                                         gm_hodge_decomposition **out, gm_error *err);
 void gm_hodge_decomposition_free(gm_hodge_decomposition *hd);
 /* Split alpha (count(k) values) into exact, coexact and harmonic parts (each count(k) values,
- * any of them may be NULL). beta (count(k−1)) optionally receives a potential with dβ = exact. */
+ * any of them may be NULL). The potentials of the exact and coexact parts are not returned. */
 gm_status gm_hodge_decomposition_apply(gm_hodge_decomposition *hd, const double *alpha,
                                        double *exact, double *coexact, double *harmonic);
 const char *gm_hodge_decomposition_errmsg(const gm_hodge_decomposition *hd);

@@ -100,10 +100,10 @@ gm_status gm_mimetic_dense_output(const gm_integrator *it, double t, double *y);
 
 /* Number of Gauss points of the quadrature of the Galerkin integrals: ∫ f(y_h(τ)) l̃_j(τ) dτ of
  * mimetic-galerkin-p, and ∫_0^1 ∇H(y_0 + s(y_1 − y_0)) ds of avf (n_points ≥ 1). The default
- * (GM_QUADRATURE_DEFAULT) is 2p + 4 points for mimetic-galerkin-p and 6 for avf (= p = 1): the
+ * (GM_QUADRATURE_DEFAULT) is 2p + 6 points for mimetic-galerkin-p and 8 for avf (= p = 1): the
  * integrand is a polynomial of degree pν − 1 when H is a polynomial of degree ν, so the default
- * is exact, and H is kept to round-off, for every polynomial H of degree ν ≤ 4 + 8/p (quartic
- * potentials at any p; ν ≤ 12 for avf). For a non-polynomial H the quadrature error makes the
+ * is exact, and H is kept to round-off, for every polynomial H of degree ν ≤ 4 + 12/p (quartic
+ * potentials at any p; ν ≤ 16 for avf). For a non-polynomial H the quadrature error makes the
  * energy error O((hω)^{2Q}) per step instead of 0; see docs/mimetic.md for measured values.
  * GM_EUNSUPPORTED for methods without such an integral. */
 #define GM_QUADRATURE_DEFAULT 0

@@ -90,6 +90,10 @@ typedef struct gm_problem {
   size_t n_constraints;
   int (*constraint)(void *ctx, const double *q, double *g);
   int (*constraint_jacobian)(void *ctx, const double *q, double *jacobian); /* n_c × dim */
+  /* optional: the constraint curvature Σ_a λ_a ∇²g_a(q) (dim × dim) that Newton's method on a
+   * constrained variational step needs; missing, central differences of constraint_jacobian are
+   * used and counted in fd_jacobians */
+  int (*constraint_hessian)(void *ctx, const double *q, const double *lambda, double *out);
   /* optional: a non-conservative force F(t, q, v) (Lagrange–d'Alembert) */
   int (*force)(void *ctx, double t, const double *q, const double *v, double *f);
   /* optional: symmetries of L, whose Noether momenta are monitored */

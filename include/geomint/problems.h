@@ -1,6 +1,7 @@
 /* geomint problems: the built-in problem library. A model is a named problem with parameters,
- * an initial state, invariants and (where one exists) an exact solution. Every derivative is
- * analytic. Parameters and initial values are changed by name before gm_model_build. */
+ * an initial state, invariants and (where one exists) an exact solution. Every derivative a
+ * problem defines is analytic (second derivatives and constraint Hessians included); Newton on
+ * a Poisson problem differentiates S(y)∇H(y) numerically, as ∂S/∂y has no callback. Parameters and initial values are changed by name before gm_model_build. */
 #ifndef GEOMINT_PROBLEMS_H
 #define GEOMINT_PROBLEMS_H
 

@@ -55,7 +55,8 @@ static const char usage[] =
     "  --compensated      compensated summation of the state update in every run (lowers\n"
     "                     the round-off floor of long runs)\n"
     "  --set name=value   change a parameter or an initial value; repeatable\n"
-    "  --json             print {\"problem\", \"t_end\", \"reference\", \"rows\": [...]} as JSON\n"
+    "  --json             print {\"problem\", \"t_end\", \"reference\", \"rows\": [...],\n"
+    "                     \"stopped\": [...]} as JSON (stopped: sweeps cut short by a limit)\n"
     "  --plot FILE.png    draw the error against the force evaluations (log-log) with gnuplot\n";
 
 #define WP_MAX_METHODS 32
@@ -91,10 +92,21 @@ typedef struct wp_context {
   double reference_dt, reference_check;
 } wp_context;
 
+/* A sweep cut short by --max-evals or --max-time: said on stderr, and in the JSON ("stopped"). */
+typedef struct wp_stop {
+  const gm_method *method;
+  double dt;        /* the step that was not run */
+  double predicted; /* its force evaluations or seconds */
+  int by_time;      /* 0: --max-evals, 1: --max-time */
+  char message[192];
+} wp_stop;
+
 typedef struct wp_rows {
   wp_row *rows;
   size_t n, cap;
   size_t n_stopped_budget; /* sweeps cut short by --max-evals */
+  wp_stop *stops;
+  size_t n_stops;
 } wp_rows;
 
 static double now_s(void) {
@@ -244,6 +256,26 @@ static int push_row(wp_rows *rows, const wp_row *r) {
   return 0;
 }
 
+static int push_stop(wp_rows *rows, const gm_scheme *sc, double h, double predicted, int by_time,
+                     const wp_context *c, int quiet) {
+  wp_stop *p = realloc(rows->stops, (rows->n_stops + 1) * sizeof *p);
+  if (p == NULL) return -1;
+  rows->stops = p;
+  wp_stop *s = &p[rows->n_stops++];
+  *s = (wp_stop){sc->method, h, predicted, by_time, {0}};
+  if (by_time)
+    snprintf(s->message, sizeof s->message,
+             "%s: stopped at dt = %.4g, which would take about %.0f s (over --max-time %g)",
+             sc->method->name, h, predicted, c->max_time);
+  else
+    snprintf(s->message, sizeof s->message,
+             "%s: stopped at dt = %.4g, which would exceed --max-evals %zu", sc->method->name, h,
+             c->max_evals);
+  rows->n_stopped_budget += !by_time;
+  if (!quiet) fprintf(stderr, "geomint wp: %s\n", s->message);
+  return 0;
+}
+
 static size_t steps_for(const wp_context *c, double h) {
   return (size_t)ceil((c->t_end - c->t0) / h);
 }
@@ -302,17 +334,13 @@ static int sweep(const wp_context *c, const gm_scheme *sc, double dt0_option, si
   for (size_t k = 0; k < levels; ++k) {
     double h = dt0 / pow(ratio, (double)k);
     const double steps = (double)steps_for(c, h);
-    if (evals_per_step > 0.0 && steps * evals_per_step > (double)c->max_evals) {
-      if (!quiet)
-        fprintf(stderr, "geomint wp: %s: stopped at dt = %.4g, which would exceed --max-evals "
-                "%zu\n", sc->method->name, h, c->max_evals);
-      return CLI_EXIT_OK;
-    }
-    if (seconds_per_step > 0.0 && steps * seconds_per_step > c->max_time) {
-      if (!quiet)
-        fprintf(stderr, "geomint wp: %s: stopped at dt = %.4g, which would take about %.0f s "
-                "(over --max-time %g)\n", sc->method->name, h, steps * seconds_per_step,
-                c->max_time);
+    const int over_evals = evals_per_step > 0.0 && steps * evals_per_step > (double)c->max_evals;
+    if (over_evals || (seconds_per_step > 0.0 && steps * seconds_per_step > c->max_time)) {
+      if (push_stop(rows, sc, h, over_evals ? steps * evals_per_step : steps * seconds_per_step,
+                    !over_evals, c, quiet) != 0) {
+        cli_error("wp", "out of memory");
+        return CLI_EXIT_FAILURE;
+      }
       return CLI_EXIT_OK;
     }
     wp_row row;
@@ -454,6 +482,18 @@ static int print_json(const wp_context *c, const gm_scheme *schemes, size_t n_sc
     cJSON_AddItemToObject(o, "error", cli_json_number(r->error));
     cJSON_AddItemToArray(a, o);
   }
+  cJSON *stopped = cJSON_AddArrayToObject(root, "stopped");
+  for (size_t i = 0; i < rows->n_stops; ++i) {
+    const wp_stop *s = &rows->stops[i];
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "method", s->method->name);
+    cJSON_AddItemToObject(o, "dt", cli_json_number(s->dt));
+    cJSON_AddStringToObject(o, "limit", s->by_time ? "max-time" : "max-evals");
+    cJSON_AddItemToObject(o, s->by_time ? "predicted_s" : "predicted_force_evals",
+                          cli_json_number(s->predicted));
+    cJSON_AddStringToObject(o, "message", s->message);
+    cJSON_AddItemToArray(stopped, o);
+  }
   if (plot != NULL) cJSON_AddStringToObject(root, "plot", plot);
   return cli_json_print(root);
 }
@@ -551,7 +591,7 @@ static int run_wp(const char *problem, const gm_model *model, const wp_options *
   double *y0 = calloc(c.n, sizeof *y0);
   c.y_ref = calloc(c.n, sizeof *c.y_ref);
   c.y = calloc(c.n, sizeof *c.y);
-  wp_rows rows = {NULL, 0, 0, 0};
+  wp_rows rows = {NULL, 0, 0, 0, NULL, 0};
   if (y0 == NULL || c.y_ref == NULL || c.y == NULL) {
     cli_error("wp", "out of memory");
     status = CLI_EXIT_FAILURE;
@@ -575,6 +615,7 @@ static int run_wp(const char *problem, const gm_model *model, const wp_options *
       print_table(&c, schemes, n_schemes, &rows, o->plot);
   }
   free(rows.rows);
+  free(rows.stops);
   free(y0);
   free(c.y_ref);
   free(c.y);

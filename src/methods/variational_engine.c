@@ -446,6 +446,14 @@ static gm_status constraint_curvature(vi_engine *e, const double *z, size_t mu, 
   const size_t d = e->d, m = e->m;
   double *qv = e->w1, *gp = e->wdd, *gmj = e->wdd + m * d;
   for (size_t k = 0; k < d; ++k) qv[k] = e->q[k] + z[(mu - 1) * d + k];
+  if (pb->constraint_hessian != NULL) { /* analytic Σ_a λ_a ∇²g_a(q), d × d in wdd */
+    double *hess = e->wdd;
+    int rc = pb->constraint_hessian(pb->ctx, qv, lam, hess);
+    if (rc != 0) return callback_failed(e, "constraint_hessian", rc);
+    for (size_t k = 0; k < d; ++k)
+      for (size_t j = 0; j < d; ++j) jac[k * ld + j] += hess[k * d + j];
+    return GM_OK;
+  }
   for (size_t j = 0; j < d; ++j) {
     const double x0 = qv[j], step = CBRT_EPS * fmax(fabs(x0), 1.0);
     qv[j] = x0 + step;

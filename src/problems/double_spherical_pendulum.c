@@ -78,6 +78,18 @@ static int constraint_jacobian(void *ctx, const double *q, double *jac) {
   return 0;
 }
 
+/* λ1 ∇²g1 + λ2 ∇²g2 = diag(λ1 I₃, λ2 I₃) */
+static int constraint_hessian(void *ctx, const double *q, const double *lambda, double *out) {
+  (void)ctx;
+  (void)q;
+  for (int i = 0; i < 36; ++i) out[i] = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    out[7 * i] = lambda[0];
+    out[7 * (3 + i)] = lambda[1];
+  }
+  return 0;
+}
+
 static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *t0, double *y0,
                        char *errmsg, size_t cap) {
   double_spherical *s = ctx;
@@ -97,6 +109,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   pb->n_constraints = 2;
   pb->constraint = constraint;
   pb->constraint_jacobian = constraint_jacobian;
+  pb->constraint_hessian = constraint_hessian;
   gm_rotation_z_setup(pb);
   /* first link at 1 rad from the vertical in the xz-plane, second at 0.5 rad turned by 90°;
    * velocities tangent to both spheres: v1 = ω1 e_z × q1, v2 = ω2 e_z × q2 + ν t2 with t2 the

@@ -54,6 +54,15 @@ static int constraint_jacobian(void *ctx, const double *q, double *jac) {
   return 0;
 }
 
+/* λ ∇²g = λ I₃ */
+static int constraint_hessian(void *ctx, const double *q, const double *lambda, double *out) {
+  (void)ctx;
+  (void)q;
+  for (int i = 0; i < 9; ++i) out[i] = 0.0;
+  for (int i = 0; i < 3; ++i) out[4 * i] = lambda[0];
+  return 0;
+}
+
 static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *t0, double *y0,
                        char *errmsg, size_t cap) {
   spherical *s = ctx;
@@ -71,6 +80,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   pb->n_constraints = 1;
   pb->constraint = constraint;
   pb->constraint_jacobian = constraint_jacobian;
+  pb->constraint_hessian = constraint_hessian;
   gm_rotation_z_setup(pb);
   const double th = params[3], w = params[4];
   y0[0] = s->l * sin(th);

@@ -211,3 +211,24 @@ Test(wp, bad_options_are_usage_errors) {
     run_output_free(&r);
   }
 }
+
+/* A sweep cut short by --max-evals is said in the JSON too (issue 17: --json dropped it). */
+Test(wp, json_records_the_max_evals_stop) {
+  run_output r = run_cli("wp kepler --methods verlet --t-end 10 --max-evals 100000 --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *root = parse_json(r.out);
+  const cJSON *stopped = cJSON_GetObjectItemCaseSensitive(root, "stopped");
+  cr_assert(cJSON_IsArray(stopped) && cJSON_GetArraySize(stopped) == 1, "%s", r.out);
+  const cJSON *s = cJSON_GetArrayItem(stopped, 0);
+  cr_expect_str_eq(json_string(s, "method"), "verlet");
+  cr_expect_str_eq(json_string(s, "limit"), "max-evals");
+  cr_expect_gt(json_number(s, "predicted_force_evals"), 100000);
+  cr_expect(strstr(json_string(s, "message"), "which would exceed --max-evals 100000") != NULL);
+  cJSON_Delete(root);
+  run_output_free(&r);
+  /* the table says it on stderr */
+  r = run_cli("wp kepler --methods verlet --t-end 10 --max-evals 100000");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_expect(strstr(r.err, "geomint wp: verlet: stopped at dt = ") != NULL, "%s", r.err);
+  run_output_free(&r);
+}
