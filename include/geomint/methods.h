@@ -84,6 +84,20 @@ const gm_method *gm_method_at(size_t index);   /* NULL past the end */
 /* Row by exact name; NULL when there is none. */
 const gm_method *gm_method_find(const char *name);
 
+/* Methods of any stage count s. Gauss–Legendre collocation ("gauss-s": order 2s, symplectic,
+ * symmetric; 1 <= s <= 64) and the Lobatto IIIA–IIIB pair ("lobatto-iiia-iiib-s": order 2s − 2,
+ * for Hamiltonian problems; 2 <= s <= 64) compute their coefficients from the nodes when an
+ * integrator is created, so any s works; the table lists s <= 8 and s <= 4. These make the row
+ * for any s (the same as the table's where both exist), *out owned by the caller: free it with
+ * gm_method_free after every integrator that uses it. Measured orders beyond the table (Kepler,
+ * e = 0.1, one period): see docs/methods.md. gm_method_create parses "gauss-S" and
+ * "lobatto-iiia-iiib-S" (GM_ENOTFOUND for other names, GM_EINVAL for S out of range). */
+gm_status gm_method_gauss(size_t s, gm_method **out, gm_error *err);
+gm_status gm_method_lobatto_iiia_iiib(size_t s, gm_method **out, gm_error *err);
+gm_status gm_method_create(const char *name, gm_method **out, gm_error *err);
+/* Free a method made by the constructors above (never a table row); NULL is a no-op. */
+void gm_method_free(gm_method *method);
+
 #ifdef __cplusplus
 }
 #endif

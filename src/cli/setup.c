@@ -6,12 +6,29 @@
 
 #include "cli/cli.h"
 
+/* gauss-S and lobatto-iiia-iiib-S beyond the table (gm_method_create) live until the program
+ * exits; a handful is all one command line names. */
+static gm_method *made[16];
+static size_t n_made;
+
 const gm_method *cli_find_method(const char *command, const char *name) {
   const gm_method *m = gm_method_find(name);
-  if (m == NULL)
+  if (m != NULL) return m;
+  gm_method *built = NULL;
+  gm_error err = {{0}};
+  gm_status st = n_made < sizeof made / sizeof made[0] ? gm_method_create(name, &built, &err)
+                                                       : GM_ENOTFOUND;
+  if (st == GM_OK) {
+    made[n_made++] = built;
+    return built;
+  }
+  if (st == GM_EINVAL)
+    cli_error(command, "%s", err.message);
+  else
     cli_unknown(command, "method", name, cli_method_name_at, NULL,
-                "see 'geomint list methods'");
-  return m;
+                "see 'geomint list methods'; gauss-S and lobatto-iiia-iiib-S take any stage "
+                "count S");
+  return NULL;
 }
 
 static const char *solver_name_at(const void *ctx, size_t i) {

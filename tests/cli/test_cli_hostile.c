@@ -192,3 +192,26 @@ Test(cli_hostile, docs_failure_example_is_the_program_output) {
   run_output_free(&r);
   free(doc);
 }
+
+/* Item 11: Gauss and Lobatto IIIA-IIIB of any stage count by name. */
+Test(cli_hostile, stage_count_by_name) {
+  run_output r = run_cli("run kepler --method gauss-12 --dt 0.5 --t-end 20 --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  cr_expect_str_eq(json_string(o, "method"), "gauss-12");
+  cr_expect_lt(json_number(o, "max_rel_energy_error"), 1e-8); /* measured 8.6e-10 */
+  cJSON_Delete(o);
+  run_output_free(&r);
+  r = run_cli("run henon-heiles --method lobatto-iiia-iiib-7 --dt 0.1 --steps 100 --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  run_output_free(&r);
+  r = run_cli("run kepler --method gauss-65");
+  cr_expect_eq(r.status, 2);
+  cr_expect(strstr(r.err, "gauss-65: 65 stages; gauss-s is made for 1 <= s <= 64") != NULL, "%s",
+            r.err);
+  run_output_free(&r);
+  r = run_cli("run kepler --method gaus-12");
+  cr_expect_eq(r.status, 2);
+  cr_expect(strstr(r.err, "unknown method 'gaus-12'") != NULL, "%s", r.err);
+  run_output_free(&r);
+}
