@@ -11,16 +11,20 @@
 
 static const char usage[] =
     "usage: geomint mesh info FILE [--json]\n"
-    "       geomint mesh poisson FILE [--out FILE.vtu]\n\n"
+    "       geomint mesh poisson FILE [--out FILE.vtu]\n"
+    "       geomint mesh poisson --levels L [--dim 2|3] [--n0 N] [--json]\n\n"
     "Read a mesh (Gmsh .msh ASCII 2.2 or 4.1, or .off) and\n"
     "  info     print counts, Euler characteristic, Betti numbers, boundary, and the quality\n"
     "           report: non-manifold faces, reoriented, degenerate and inverted cells, cells that\n"
     "           are not well-centred, negative dual volumes, min/max Hodge star entries\n"
     "  poisson  solve -Δu = f with the manufactured solution u = Π sin(π(x_i − lo_i)/L_i + 1/4)\n"
     "           (bounding box lo, L) and Dirichlet data, with the DEC Laplacian, and print the\n"
-    "           error (a quick check that a mesh is fit for DEC)\n\n"
+    "           error (a quick check that a mesh is fit for DEC); with --levels L, on L\n"
+    "           generated meshes of the unit square (--dim 2, default) or cube (--dim 3) with\n"
+    "           N, 2N, ..., 2^(L-1) N cells a side (--n0 N, default 4), printing the errors and\n"
+    "           their observed rate of convergence\n\n"
     "options:\n"
-    "  --json       (info) print one JSON object\n"
+    "  --json       (info, poisson --levels) print one JSON object\n"
     "  --out FILE   (poisson) write the mesh with u_h, u and the error to a .vtu file\n"
     "  --max-file-size SIZE  refuse files larger than SIZE bytes (suffix K, M, G: powers of\n"
     "               1024; default 1G); a NUL byte (a binary file, /dev/zero) is refused at once\n\n"
@@ -232,12 +236,96 @@ static int mesh_poisson(const char *path, const char *out) {
   return status;
 }
 
+/* mesh poisson --levels L: the check on generated meshes of the unit square (dim 2: n×n squares
+ * cut by one diagonal) or cube (dim 3: n³ cubes in 6 Kuhn tetrahedra), n = n0, 2 n0, ...,
+ * 2^(L−1) n0, with the observed rate log(e_{k−1}/e_k) / log(h_{k−1}/h_k) of each error. */
+static int poisson_levels(size_t levels, size_t dim, size_t n0, int json) {
+  if (levels < 2 || levels > 12) {
+    cli_error("mesh", "--levels %zu: give 2 to 12 levels", levels);
+    return CLI_EXIT_USAGE;
+  }
+  if (dim != 2 && dim != 3) {
+    cli_error("mesh", "--dim %zu: the generated meshes are 2 (square) or 3 (cube)", dim);
+    return CLI_EXIT_USAGE;
+  }
+  if (n0 < 2 || (double)n0 * pow(2.0, (double)(levels - 1)) > (dim == 2 ? 4096.0 : 128.0)) {
+    cli_error("mesh", "--n0 %zu with %zu levels: need n0 >= 2 and at most %d cells a side on the "
+              "finest level",
+              n0, levels, dim == 2 ? 4096 : 128);
+    return CLI_EXIT_USAGE;
+  }
+  cJSON *root = json ? cJSON_CreateObject() : NULL, *rows = NULL;
+  if (json) {
+    cJSON_AddStringToObject(root, "mesh", dim == 2 ? "unit square, n x n squares cut by a diagonal"
+                                                   : "unit cube, n^3 cubes in 6 Kuhn tetrahedra");
+    rows = cJSON_AddArrayToObject(root, "levels");
+  } else {
+    printf("poisson on generated meshes of the unit %s: -Δu = f, u = Π sin(π x_i + 1/4)\n",
+           dim == 2 ? "square" : "cube");
+    printf("  %5s %9s %10s %13s %6s %13s %6s\n", "n", "vertices", "h", "max error", "rate",
+           "L2 error", "rate");
+  }
+  double prev_h = NAN, prev_max = NAN, prev_l2 = NAN, rate_max = NAN, rate_l2 = NAN;
+  for (size_t k = 0; k < levels; ++k) {
+    const size_t n = n0 << k;
+    gm_mesh *m = NULL;
+    gm_error err = {{0}};
+    const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    gm_status st = dim == 2 ? gm_mesh_rectangle(0, 1, 0, 1, n, n, GM_DIAGONAL_RIGHT, &m, &err)
+                            : gm_mesh_box(lo, hi, n, n, n, GM_BOX_KUHN, &m, &err);
+    gm_poisson_report rep;
+    if (st == GM_OK) st = gm_mesh_poisson(m, &rep, NULL, &err);
+    gm_mesh_free(m);
+    if (st != GM_OK) {
+      cli_error("mesh", "poisson at n = %zu: %s", n, err.message);
+      cJSON_Delete(root);
+      return CLI_EXIT_FAILURE;
+    }
+    if (k > 0) {
+      rate_max = log(prev_max / rep.error_max) / log(prev_h / rep.h);
+      rate_l2 = log(prev_l2 / rep.error_l2) / log(prev_h / rep.h);
+    }
+    if (json) {
+      cJSON *o = cJSON_CreateObject();
+      cJSON_AddNumberToObject(o, "n", (double)n);
+      cJSON_AddNumberToObject(o, "vertices", (double)rep.n_vertices);
+      cJSON_AddItemToObject(o, "h", cli_json_number(rep.h));
+      cJSON_AddItemToObject(o, "error_max", cli_json_number(rep.error_max));
+      cJSON_AddItemToObject(o, "error_l2", cli_json_number(rep.error_l2));
+      if (k > 0) {
+        cJSON_AddItemToObject(o, "rate_max", cli_json_number(rate_max));
+        cJSON_AddItemToObject(o, "rate_l2", cli_json_number(rate_l2));
+      }
+      cJSON_AddItemToArray(rows, o);
+    } else if (k == 0) {
+      printf("  %5zu %9zu %10.4g %13.6e %6s %13.6e %6s\n", n, rep.n_vertices, rep.h,
+             rep.error_max, "", rep.error_l2, "");
+    } else {
+      printf("  %5zu %9zu %10.4g %13.6e %6.3f %13.6e %6.3f\n", n, rep.n_vertices, rep.h,
+             rep.error_max, rate_max, rep.error_l2, rate_l2);
+    }
+    prev_h = rep.h, prev_max = rep.error_max, prev_l2 = rep.error_l2;
+  }
+  if (json) {
+    cJSON_AddItemToObject(root, "rate_max", cli_json_number(rate_max));
+    cJSON_AddItemToObject(root, "rate_l2", cli_json_number(rate_l2));
+    return cli_json_print(root);
+  }
+  printf("rate of the finest level: max error %.3f, L2 error %.3f (2 is second order)\n", rate_max,
+         rate_l2);
+  return CLI_EXIT_OK;
+}
+
 static int mesh_main(int argc, char **argv) {
   int json = 0;
   const char *out = NULL, *max_size = NULL;
+  size_t levels = 0, dim = 2, n0 = 4;
   cli_option options[] = {{"--json", CLI_ARG_FLAG, &json, 0},
                           {"--out", CLI_ARG_STRING, &out, 0},
-                          {"--max-file-size", CLI_ARG_STRING, &max_size, 0}};
+                          {"--max-file-size", CLI_ARG_STRING, &max_size, 0},
+                          {"--levels", CLI_ARG_COUNT, &levels, 0},
+                          {"--dim", CLI_ARG_COUNT, &dim, 0},
+                          {"--n0", CLI_ARG_COUNT, &n0, 0}};
   const char *pos[2];
   size_t n_pos = 0;
   int status = cli_parse("mesh", argc, argv, options, sizeof options / sizeof options[0], pos, 2,
@@ -250,6 +338,17 @@ static int mesh_main(int argc, char **argv) {
   if (max_size != NULL && (max_file_bytes = parse_size(max_size)) == 0) {
     cli_error("mesh", "--max-file-size %s: expected a size in bytes such as 4096, 64M or 2G",
               max_size);
+    return CLI_EXIT_USAGE;
+  }
+  if (n_pos >= 1 && strcmp(pos[0], "poisson") == 0 && options[3].seen) {
+    if (n_pos > 1 || options[1].seen) {
+      cli_error("mesh", "poisson --levels runs on generated meshes: no FILE, no --out");
+      return CLI_EXIT_USAGE;
+    }
+    return poisson_levels(levels, dim, n0, json);
+  }
+  if (options[4].seen || options[5].seen) {
+    cli_error("mesh", "--dim and --n0 belong to 'mesh poisson --levels'");
     return CLI_EXIT_USAGE;
   }
   if (n_pos < 2) {
