@@ -398,7 +398,7 @@ static gm_status msh22_elements(lexer *lx, raw_mesh *r) {
   size_t n = 0;
   gm_status st = read_count(lx, "number of elements", &n);
   for (size_t i = 0; i < n && st == GM_OK; ++i) {
-    long long id, type, ntags;
+    long long id, type = 0, ntags = 0;
     size_t line;
     st = read_long(lx, "element tag", &id);
     line = lx->line;
@@ -518,7 +518,7 @@ static gm_status msh41_elements(lexer *lx, raw_mesh *r, const entities *e) {
   if (st == GM_OK) st = read_long(lx, "minimum element tag", &lo);
   if (st == GM_OK) st = read_long(lx, "maximum element tag", &hi);
   for (size_t b = 0; b < nblocks && st == GM_OK; ++b) {
-    long long edim, etag, type;
+    long long edim = 0, etag = 0, type = 0;
     size_t nb = 0, nn = 0, dim = 0;
     st = read_long(lx, "entity dimension", &edim);
     if (st == GM_OK) st = read_long(lx, "entity tag", &etag);
