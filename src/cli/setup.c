@@ -8,7 +8,7 @@
 
 /* gauss-S and lobatto-iiia-iiib-S beyond the table (gm_method_create) live until the program
  * exits; a handful is all one command line names. */
-static gm_method *made[16];
+static gm_method *made[64];
 static size_t n_made;
 
 const gm_method *cli_find_method(const char *command, const char *name) {
@@ -16,8 +16,13 @@ const gm_method *cli_find_method(const char *command, const char *name) {
   if (m != NULL) return m;
   gm_method *built = NULL;
   gm_error err = {{0}};
-  gm_status st = n_made < sizeof made / sizeof made[0] ? gm_method_create(name, &built, &err)
-                                                       : GM_ENOTFOUND;
+  gm_status st = gm_method_create(name, &built, &err);
+  if (st == GM_OK && n_made == sizeof made / sizeof made[0]) {
+    gm_method_free(built);
+    cli_error(command, "%s: more than %zu methods made by stage count on one command line", name,
+              sizeof made / sizeof made[0]);
+    return NULL;
+  }
   if (st == GM_OK) {
     made[n_made++] = built;
     return built;
