@@ -220,6 +220,9 @@ double gm_monitor_last_rel_energy_error(const gm_monitor *monitor);
 /* max over observed states of |I_k - I_k(y0)| */
 double gm_monitor_max_invariant_drift(const gm_monitor *monitor, size_t k);
 size_t gm_monitor_n_observed(const gm_monitor *monitor);
+/* gm_monitor_observe returns non-zero (stopping the run with GM_ECALLBACK) when the energy or
+ * an invariant is NaN or infinite at an observed state; this says which, at which step. */
+const char *gm_monitor_errmsg(const gm_monitor *monitor);
 
 /* ---- empirical order ------------------------------------------------------------------- */
 
@@ -233,7 +236,61 @@ typedef struct gm_order_result {
   size_t n_fitted;                     /* levels used in the fit */
   int reference_is_exact;              /* 1: the problem's exact solution; 0: a reference run */
   const struct gm_method *reference;   /* the reference method, NULL when exact */
+  /* gm_order_measure_window only (zero from gm_order_measure): */
+  double refinement;                   /* ratio between levels */
+  size_t first_fitted;                 /* index of the first level inside the window */
+  double window_top, window_bottom;    /* the asymptotic window of the declared order, as
+                                          absolute errors (relative window × scale) */
+  int outcome;                         /* gm_order_outcome: measured, or why not */
+  double fit_deviation;                /* largest distance of a fitted error from the fitted
+                                          line, in decades (log10) */
 } gm_order_result;
+
+/* Why an order could not be measured (gm_order_result.outcome). */
+typedef enum gm_order_outcome {
+  GM_ORDER_MEASURED = 0,      /* at least three levels inside the window: order is their slope */
+  GM_ORDER_PRE_ASYMPTOTIC,    /* every error is above the window: the steps are too large */
+  GM_ORDER_ROUNDOFF,          /* the errors fall below the window (round-off) before three
+                                 levels land inside it: the asymptotic range of this order
+                                 lies at or below round-off on this problem */
+  GM_ORDER_TOO_FEW_LEVELS,    /* fewer than three levels reached the window */
+  GM_ORDER_IRREGULAR          /* the errors in the window stray from a power law by more than
+                                 GM_ORDER_MAX_DEVIATION decades (round-off, solver tolerance) */
+} gm_order_outcome;
+#define GM_ORDER_MAX_DEVIATION 0.05
+
+/* The asymptotic window of a method of order p, relative to the size of the solution
+ * (max(1, |y0|∞)): errors between *bottom and *top are fitted. Above it the error expansion's
+ * later terms still matter, below it round-off does. top = 10^−(p+2) clamped to [1e-7, 1e-3];
+ * bottom = top · 10^−min(6, 2p), at least 1e-12 (the window narrows with the order: at most 6
+ * decades, 2 per order). */
+void gm_order_window(int order, double *top, double *bottom);
+
+/* How gm_order_measure_window chooses its levels; zero fields are chosen automatically. */
+typedef struct gm_order_plan {
+  double dt0;          /* largest step; 0: the largest power of two (from min(1, T − t0))
+                          whose error is at or below the top of the window */
+  size_t n_levels;     /* 0: enough to span the window, at most GM_ORDER_MAX_LEVELS */
+  double refinement;   /* 0: min(2, 10^(1/(2p))), half a decade of error per level */
+  const struct gm_method *reference; /* borrowed; NULL: as in gm_order_measure */
+  /* optional: called every few steps with the steps done and the steps planned (the total
+   * grows while dt0 is searched); a non-zero return stops the measurement (GM_ECALLBACK) */
+  int (*progress)(void *ctx, double steps_done, double steps_total);
+  void *progress_ctx;  /* borrowed */
+} gm_order_plan;
+
+/* The order of the scheme's declared order window: levels as in gm_order_measure, chosen by
+ * `plan` (NULL: all automatic), and the slope fitted over the levels whose error lies inside
+ * gm_order_window(method->order) × scale, scale = max(1, |y0|∞). Without an exact solution the
+ * reference run's step is halved until two runs agree to 1% of the window's bottom (or stop
+ * improving). Levels whose shortened step (T − t0)/⌈(T − t0)/dt⌉ repeats the previous one are
+ * skipped; dts holds the steps actually taken. Returns GM_OK both when the order was measured (outcome GM_ORDER_MEASURED, the
+ * slope in out->order) and when it could not be (order NaN, outcome says why; dts and errors
+ * hold what was measured). A run that fails is an error as in gm_order_measure, except that
+ * once two levels are done a failing finer level ends the levels there. */
+gm_status gm_order_measure_window(const gm_scheme *scheme, const gm_problem *problem, double t0,
+                                  const double *y0, double t_end, const gm_order_plan *plan,
+                                  gm_order_result *out, gm_error *err);
 
 /* Integrate the scheme from (t0, y0) to t_end with steps dt0, dt0/r, dt0/r², ... (n_levels ≤
  * GM_ORDER_MAX_LEVELS; refinement r > 1, 2 is usual, less for very high orders, whose error

@@ -115,19 +115,26 @@ static int info_json(const char *path, const gm_mesh_report *r) {
   return cli_json_print(o);
 }
 
+/* A mesh file that cannot be read or is not a valid mesh is bad input (exit 2); running out of
+ * memory is a failure (exit 1). */
+static int input_status(gm_status st) {
+  return st == GM_ENOMEM ? CLI_EXIT_FAILURE : CLI_EXIT_USAGE;
+}
+
 static int mesh_info(const char *path, int json) {
   gm_mesh *m = NULL;
   gm_error err = {{0}};
-  if (gm_mesh_read(path, &m, &err) != GM_OK) {
+  gm_status st = gm_mesh_read(path, &m, &err);
+  if (st != GM_OK) {
     cli_error("mesh", "%s", err.message);
-    return CLI_EXIT_FAILURE;
+    return input_status(st);
   }
   gm_mesh_report r;
-  gm_status st = gm_mesh_quality(m, &r, &err);
+  st = gm_mesh_quality(m, &r, &err);
   gm_mesh_free(m);
   if (st != GM_OK) {
     cli_error("mesh", "%s", err.message);
-    return CLI_EXIT_FAILURE;
+    return input_status(st);
   }
   if (json) return info_json(path, &r);
   print_info(path, &r);
@@ -137,9 +144,10 @@ static int mesh_info(const char *path, int json) {
 static int mesh_poisson(const char *path, const char *out) {
   gm_mesh *m = NULL;
   gm_error err = {{0}};
-  if (gm_mesh_read(path, &m, &err) != GM_OK) {
+  gm_status read_st = gm_mesh_read(path, &m, &err);
+  if (read_st != GM_OK) {
     cli_error("mesh", "%s", err.message);
-    return CLI_EXIT_FAILURE;
+    return input_status(read_st);
   }
   gm_poisson_report rep;
   double *u = malloc(m->n_vertices * sizeof(double));

@@ -27,7 +27,13 @@ static const char usage[] =
     "  --plot FILE.png    draw the relative energy error against time with gnuplot\n"
     "  --set name=value   change a parameter or an initial value (q1.., p1.., y1..); repeatable\n"
     "  --compensated      compensated (Kahan) summation of the state update\n"
-    "  --json             print one JSON object instead of the summary\n";
+    "  --json             print one JSON object instead of the summary (also when the run\n"
+    "                     fails: then with \"error\" and the statistics up to the failure)\n"
+    "  --quiet            no work estimate or progress line (shown on a terminal for runs\n"
+    "                     estimated to take more than 3 s)\n\n"
+    "A state, energy or invariant that becomes NaN or infinite stops the run with an error\n"
+    "naming the step and the component; the CSV ends with the last finite row. Ctrl-C (SIGINT)\n"
+    "stops at the next step, keeps the CSV (whole rows) and exits with status 130.\n";
 
 typedef struct run_options {
   const char *method, *basic, *solver;
@@ -35,7 +41,7 @@ typedef struct run_options {
   size_t steps, every;
   const char *out, *plot;
   cli_settings settings;
-  int compensated, json;
+  int compensated, json, quiet;
 } run_options;
 
 static cJSON *final_state(const gm_problem *pb, const cli_sim_result *r) {
@@ -167,7 +173,7 @@ static int run_model(const char *problem, const gm_model *model, const gm_scheme
   const gm_problem *pb = gm_model_problem(model);
   const gm_method *m = sc->method;
   cli_sim_config c = {*sc, model, o->dt, o->t_end, o->steps, o->every, o->every,
-                      o->out != NULL ? o->out : tmp_csv};
+                      o->out != NULL ? o->out : tmp_csv, o->quiet};
   cli_sim_result r;
   int status = cli_simulate("run", &c, &r);
   if (status == CLI_EXIT_OK && o->plot != NULL) {
@@ -181,13 +187,36 @@ static int run_model(const char *problem, const gm_model *model, const gm_scheme
       status = print_json(problem, sc, pb, o, &r);
     else
       print_summary(problem, sc, pb, o, &r);
+  } else if (o->json) {
+    /* one JSON object also for a failed run: the error and what was done up to it */
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "problem", problem);
+    cJSON_AddStringToObject(root, "method", m->name);
+    cJSON_AddStringToObject(root, "error", r.error);
+    cJSON_AddNumberToObject(root, "exit_status", status);
+    if (r.ran) {
+      cJSON_AddNumberToObject(root, "steps", (double)r.stats.steps);
+      cJSON_AddItemToObject(root, "t0", cli_json_number(r.t0));
+      cJSON_AddItemToObject(root, "t", cli_json_number(r.t_final));
+      cJSON_AddNumberToObject(root, "force_evals", (double)r.stats.force_evals);
+      cJSON_AddNumberToObject(root, "newton_iterations", (double)r.stats.newton_iterations);
+      cJSON_AddNumberToObject(root, "newton_failures", (double)r.stats.newton_failures);
+      cJSON_AddItemToObject(root, "max_rel_energy_error",
+                            cli_json_number(gm_monitor_max_rel_energy_error(r.monitor)));
+      cJSON_AddItemToObject(root, "final", final_state(pb, &r));
+      if (o->out != NULL) {
+        cJSON_AddStringToObject(root, "csv", o->out);
+        cJSON_AddNumberToObject(root, "csv_rows", (double)r.csv_rows);
+      }
+    }
+    cli_json_print(root);
   }
   cli_sim_result_clear(&r);
   return status;
 }
 
 static int run_main(int argc, char **argv) {
-  run_options o = {"verlet", NULL, NULL, 0.01, 10.0, 0, 1, NULL, NULL, {0, {0}}, 0, 0};
+  run_options o = {"verlet", NULL, NULL, 0.01, 10.0, 0, 1, NULL, NULL, {0, {0}}, 0, 0, 0};
   cli_option options[] = {
       {"--method", CLI_ARG_STRING, &o.method, 0}, {"--dt", CLI_ARG_DOUBLE, &o.dt, 0},
       {"--basic", CLI_ARG_STRING, &o.basic, 0},   {"--solver", CLI_ARG_STRING, &o.solver, 0},
@@ -195,7 +224,7 @@ static int run_main(int argc, char **argv) {
       {"--every", CLI_ARG_COUNT, &o.every, 0},    {"--out", CLI_ARG_STRING, &o.out, 0},
       {"--plot", CLI_ARG_STRING, &o.plot, 0},     {"--set", CLI_ARG_SETTING, &o.settings, 0},
       {"--compensated", CLI_ARG_FLAG, &o.compensated, 0},
-      {"--json", CLI_ARG_FLAG, &o.json, 0}};
+      {"--json", CLI_ARG_FLAG, &o.json, 0},       {"--quiet", CLI_ARG_FLAG, &o.quiet, 0}};
   const char *problem[1];
   size_t n_problem = 0;
   int status = cli_parse("run", argc, argv, options, sizeof options / sizeof options[0],

@@ -252,9 +252,13 @@ static gm_status notify(gm_integrator *it, int all) {
 
 gm_status gm_nonfinite_state(gm_integrator *it, size_t component, double t_new) {
   if (it->stepper->invalidate != NULL) it->stepper->invalidate(it);
+  char name[32] = "";
+  if (gm_problem_has_momenta(it->problem))
+    snprintf(name, sizeof name, " (%c%zu)", component < it->dim ? 'q' : 'p',
+             component % it->dim + 1);
   return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
-                 "state component %zu became %g in the step from t = %.17g to t = %.17g",
-                 component + 1, it->y_next[component], it->t, t_new);
+                 "state component %zu%s became %g in step %zu, from t = %.17g to t = %.17g",
+                 component + 1, name, it->y_next[component], it->step_index + 1, it->t, t_new);
 }
 
 /* Advance one step of size h to the time t_new; the state is unchanged on failure. */
