@@ -15,6 +15,7 @@
 #define GEOMINT_ODE_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "geomint/core.h"
 
@@ -192,8 +193,43 @@ gm_status gm_integrator_add_observer(gm_integrator *it, gm_observer_fn fn, void 
 gm_status gm_integrator_step(gm_integrator *it, double h);
 /* n_steps steps of size h. */
 gm_status gm_integrator_run(gm_integrator *it, size_t n_steps, double h);
-/* Fixed steps of equal size, at most h, ending exactly at t_end (h > 0, t_end > t). */
+/* Fixed steps of equal size, at most h, ending exactly at t_end (h > 0, t_end > t). Methods
+ * that choose their own step sizes (gm_integrator_chooses_steps: vi-sem-*) instead step until
+ * the first step that reaches or passes t_end, and stop there: the time reached
+ * (gm_integrator_time) is then t_end or up to one step later. */
 gm_status gm_integrator_integrate(gm_integrator *it, double t_end, double h);
+/* Does the method choose its own step sizes (the symplectic-energy-momentum rows)? */
+int gm_integrator_chooses_steps(const gm_integrator *it);
+
+/* ---- checkpoint and restart --------------------------------------------------------------- */
+/* A checkpoint holds everything the next step depends on: the method (and basic method, solver,
+ * compensation), the problem's state size, the time, the state, the compensated-summation
+ * carry, the step counter, the statistics, the method's own state (starting values of implicit
+ * solvers, the force of an FSAL splitting, the step and energy of vi-sem) and the run in
+ * progress (its time grid), plus up to GM_CHECKPOINT_MAX_EXTRA bytes of the caller's own
+ * (e.g. a monitor's state). Binary, in this machine's byte order, with a magic, a version and
+ * a checksum (FNV-1a, 64 bits). Saved during a run (from an observer) or after it; loading it
+ * into an integrator of the same method and problem and calling gm_integrator_resume continues
+ * that run bitwise identically to one that was not interrupted. */
+#define GM_CHECKPOINT_MAX_EXTRA 65536
+/* Write a checkpoint to f (borrowed, binary). extra (copied, extra_size bytes) may be NULL. */
+gm_status gm_integrator_save(gm_integrator *it, FILE *f, const void *extra, size_t extra_size);
+/* Write it to path atomically (a temporary file in the same directory, then rename). */
+gm_status gm_integrator_save_file(gm_integrator *it, const char *path, const void *extra,
+                                  size_t extra_size);
+/* Read a checkpoint into an integrator created for the same method, basic method and problem
+ * size (observers may already be added; they are not called again for the saved step). A
+ * truncated file, another kind of file, a checksum mismatch, another method, solver or state
+ * size is GM_EIO or GM_EINVAL with a message (gm_integrator_errmsg), the integrator
+ * unchanged. extra (extra_cap bytes, may be NULL) receives the caller's bytes, *extra_size
+ * (may be NULL) their number. */
+gm_status gm_integrator_load(gm_integrator *it, FILE *f, void *extra, size_t extra_cap,
+                             size_t *extra_size);
+gm_status gm_integrator_load_file(gm_integrator *it, const char *path, void *extra,
+                                  size_t extra_cap, size_t *extra_size);
+/* Continue the run that was in progress when the loaded checkpoint was saved (the remaining
+ * steps of gm_integrator_run / gm_integrator_integrate, on the same time grid). */
+gm_status gm_integrator_resume(gm_integrator *it);
 
 double gm_integrator_time(const gm_integrator *it);
 const double *gm_integrator_state(const gm_integrator *it); /* borrowed, valid until next call */
