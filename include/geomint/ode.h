@@ -259,6 +259,14 @@ size_t gm_monitor_n_observed(const gm_monitor *monitor);
 /* gm_monitor_observe returns non-zero (stopping the run with GM_ECALLBACK) when the energy or
  * an invariant is NaN or infinite at an observed state; this says which, at which step. */
 const char *gm_monitor_errmsg(const gm_monitor *monitor);
+/* What the monitor has recorded, as gm_monitor_state_size doubles (for checkpoints: saved with
+ * gm_integrator_save's extra bytes, loaded into a monitor created from the same y0). */
+size_t gm_monitor_state_size(const gm_monitor *monitor);
+void gm_monitor_state_save(const gm_monitor *monitor, double *out);
+void gm_monitor_state_load(gm_monitor *monitor, const double *in);
+/* The final time of the run in progress or last made (the checkpointed run after a load);
+ * NaN when none. */
+double gm_integrator_run_end_time(const gm_integrator *it);
 
 /* ---- empirical order ------------------------------------------------------------------- */
 

@@ -107,6 +107,9 @@ typedef struct cli_sim_config {
   size_t csv_every;
   const char *csv_path;   /* NULL: no CSV */
   int quiet;              /* no progress line even on a terminal */
+  const char *checkpoint_path; /* NULL: no checkpoints */
+  size_t checkpoint_every;     /* steps between checkpoints (also one when interrupted) */
+  const char *restart_path;    /* NULL: start from the initial state */
 } cli_sim_config;
 
 typedef struct cli_sim_result {
@@ -119,6 +122,14 @@ typedef struct cli_sim_result {
   size_t csv_rows;
   size_t energy_column;   /* 0-based CSV column of rel_energy_error, (size_t)-1 if none */
   int ran;                /* the integration started: stats and the monitor are the run's */
+  int chooses_steps;      /* vi-sem-*: its own steps; the fields below are set */
+  double discrete_energy; /* E of the run (set by the first step) */
+  double max_rel_discrete_energy_error; /* max |E_d − E| / |E| over the steps */
+  size_t energy_fallbacks;
+  int restarted;          /* from restart_path, at restart_step / restart_t */
+  size_t restart_step;
+  double restart_t;
+  size_t checkpoints;     /* checkpoints written */
   char error[GM_ERRMSG_SIZE + 128]; /* why it failed ("" on success) */
 } cli_sim_result;
 
@@ -136,6 +147,8 @@ void cli_interrupt_install(void);
 void cli_interrupt_restore(void);
 /* Exit status of a run stopped by SIGINT. */
 #define CLI_EXIT_INTERRUPTED 130
+/* The monitor's state saved in a checkpoint: at most this many doubles. */
+#define CLI_MAX_MONITOR_STATE 256
 /* Steps between checks of the interrupt flag and progress updates during a run. */
 #define CLI_PROGRESS_EVERY 16
 
@@ -144,7 +157,8 @@ typedef struct cli_progress {
   int enabled;         /* stderr is a terminal and not --quiet */
   double start, last_print;
   int announced, long_run, printed;
-  double total_steps;  /* for cli_progress_observe */
+  double total_steps;  /* for cli_progress_observe: steps of this session */
+  double step_offset;  /* steps done before it (a restarted run) */
 } cli_progress;
 
 void cli_progress_start(cli_progress *progress, const char *command, int quiet);

@@ -82,7 +82,7 @@ static int run_demo(const char *dir, const gm_model *model, demo_row *rows) {
     if (rows[i].method == NULL) return CLI_EXIT_FAILURE;
     snprintf(rows[i].csv, sizeof rows[i].csv, "%s/kepler-%s.csv", dir, demo_methods[i]);
     cli_sim_config c = {{rows[i].method, NULL, GM_SOLVER_DEFAULT, 0}, model, DEMO_DT,
-                        DEMO_ORBITS * two_pi, 0, 1, DEMO_CSV_EVERY, rows[i].csv, 0};
+                        DEMO_ORBITS * two_pi, 0, 1, DEMO_CSV_EVERY, rows[i].csv, 0, NULL, 0, NULL};
     status = cli_simulate("demo", &c, &rows[i].result);
     series[i] = (cli_plot_series){rows[i].csv, demo_methods[i], rows[i].result.energy_column};
   }

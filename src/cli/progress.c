@@ -100,5 +100,5 @@ int cli_progress_observe(void *ctx, size_t step, double t, const double *y) {
   (void)t;
   (void)y;
   cli_progress *p = ctx;
-  return cli_progress_update(p, (double)step, p->total_steps);
+  return cli_progress_update(p, (double)step - p->step_offset, p->total_steps);
 }

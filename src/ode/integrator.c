@@ -415,6 +415,10 @@ gm_status gm_integrator_resume(gm_integrator *it) {
   return run_steps_from(it, &it->run, it->step_index - it->run_start);
 }
 
+double gm_integrator_run_end_time(const gm_integrator *it) {
+  return it != NULL && it->run_kind != 0 ? it->run.t_last : NAN;
+}
+
 double gm_integrator_time(const gm_integrator *it) { return it ? it->t : NAN; }
 const double *gm_integrator_state(const gm_integrator *it) { return it ? it->y : NULL; }
 size_t gm_integrator_state_size(const gm_integrator *it) { return it ? it->n : 0; }

@@ -95,3 +95,24 @@ double gm_monitor_max_invariant_drift(const gm_monitor *mon, size_t k) {
   return mon->max_drift[k];
 }
 size_t gm_monitor_n_observed(const gm_monitor *mon) { return mon ? mon->n_observed : 0; }
+
+/* Checkpoints: what the monitor has recorded (its initial values come from y0 again). */
+size_t gm_monitor_state_size(const gm_monitor *mon) {
+  return mon != NULL ? 3 + mon->problem->n_invariants : 0;
+}
+
+void gm_monitor_state_save(const gm_monitor *mon, double *out) {
+  if (mon == NULL || out == NULL) return;
+  out[0] = mon->max_rel_energy;
+  out[1] = mon->last_rel_energy;
+  out[2] = (double)mon->n_observed;
+  for (size_t i = 0; i < mon->problem->n_invariants; ++i) out[3 + i] = mon->max_drift[i];
+}
+
+void gm_monitor_state_load(gm_monitor *mon, const double *in) {
+  if (mon == NULL || in == NULL) return;
+  mon->max_rel_energy = in[0];
+  mon->last_rel_energy = in[1];
+  mon->n_observed = (size_t)in[2];
+  for (size_t i = 0; i < mon->problem->n_invariants; ++i) mon->max_drift[i] = in[3 + i];
+}

@@ -225,3 +225,117 @@ Test(truth, long_run_shows_progress_on_a_terminal) {
             r.out);
   run_output_free(&r);
 }
+
+/* ---- methods that choose their own steps stop at --t-end --------------------------------- */
+
+Test(truth, vi_sem_stops_at_t_end_and_reports_its_energy) {
+  run_output r = run_cli("run kepler --method vi-sem-midpoint --dt 0.05 --t-end 31.4 "
+                         "--out sem.csv --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  const double t = json_number(o, "t_end"), steps = json_number(o, "steps");
+  /* the first step reaching 31.4: at most one step (< 0.4 at apocentre) beyond; the first
+   * version ran the 628 steps of dt = 0.05 to t = 114.4 */
+  cr_expect(t >= 31.4 && t < 31.8, "t = %.17g", t);
+  cr_expect(steps > 100 && steps < 300, "%g steps", steps);
+  cr_expect(cJSON_IsTrue(cJSON_GetObjectItem(o, "chooses_steps")));
+  cr_expect_lt(json_number(o, "max_rel_discrete_energy_error"), 1e-13);
+  cr_expect_eq(json_number(o, "energy_fallbacks"), 0);
+  cr_expect(fabs(json_number(o, "discrete_energy") + 0.53168) < 1e-4);
+  cJSON_Delete(o);
+  run_output_free(&r);
+  /* the CSV: a discrete_energy_error column, the last row at the time reached */
+  char *text = read_file(path_in_tmp("sem.csv"));
+  static const char header[] = "t,q1,q2,p1,p2,H,rel_energy_error,angular-momentum,runge-lenz,"
+                               "discrete_energy_error\n";
+  cr_expect(strncmp(text, header, strlen(header)) == 0, "%.120s", text);
+  free(text);
+  cr_expect_eq((double)check_whole_rows("sem.csv"), steps + 1);
+  /* the summary says so; e = 0.9 counts its least-squares fallbacks */
+  r = run_cli("run kepler --method vi-sem-midpoint --dt 0.05 --t-end 31.4");
+  cr_expect(strstr(r.out, "stopped at the first step reaching --t-end 31.4") != NULL, "%s", r.out);
+  cr_expect(strstr(r.out, "max |E_d - E0|/|E0|") != NULL, "%s", r.out);
+  run_output_free(&r);
+  r = run_cli("run kepler --method vi-sem-midpoint --set e=0.9 --dt 1e-3 --t-end 6.3 --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  o = parse_json(r.out);
+  cr_expect_gt(json_number(o, "energy_fallbacks"), 100); /* measured 890 of 974 steps */
+  cr_expect_gt(json_number(o, "max_rel_discrete_energy_error"), 1e-5); /* measured 1.9e-3 */
+  cJSON_Delete(o);
+  run_output_free(&r);
+}
+
+/* ---- checkpoint and restart --------------------------------------------------------------- */
+
+/* A run stopped by SIGINT (saving its checkpoint) and restarted ends bitwise where the
+ * uninterrupted run ends: CSV bytes, final state and statistics. */
+static void restart_matches(const char *method, const char *run_args, double interrupt_after) {
+  char line[1024];
+  snprintf(line, sizeof line, "GM run kepler --method %s %s --out whole.csv --json --quiet",
+           method, run_args);
+  run_output whole = run_shell(line);
+  cr_assert_eq(whole.status, 0, "%s: %s", method, whole.err);
+  snprintf(line, sizeof line, "exec timeout --preserve-status -s INT %g GM run kepler --method "
+           "%s %s --out part.csv --checkpoint ck --every-checkpoint 1000 --quiet",
+           interrupt_after, method, run_args);
+  run_output first = run_shell(line);
+  int interrupted = first.status == 130;
+  cr_expect(interrupted, "%s: the first run was not interrupted (exit %d)", method, first.status);
+  cr_expect(interrupted || first.status == 0, "%s: exit %d %s", method, first.status, first.err);
+  snprintf(line, sizeof line, "GM run kepler --method %s %s --out part.csv --restart ck --json "
+           "--quiet", method, run_args);
+  run_output second = run_shell(line);
+  cr_assert_eq(second.status, 0, "%s: %s", method, second.err);
+  cJSON *a = parse_json(whole.out), *b = parse_json(second.out);
+  cr_expect_gt(json_number(b, "restart_step"), 0, "%s", method);
+  static const char *const keys[] = {"steps", "t_end", "force_evals", "newton_iterations",
+                                     "max_rel_energy_error", "final_rel_energy_error"};
+  for (size_t k = 0; k < sizeof keys / sizeof keys[0]; ++k)
+    cr_expect_eq(json_number(a, keys[k]), json_number(b, keys[k]), "%s: %s %.17g vs %.17g",
+                 method, keys[k], json_number(a, keys[k]), json_number(b, keys[k]));
+  char *fa = cJSON_PrintUnformatted(cJSON_GetObjectItem(a, "final"));
+  char *fb = cJSON_PrintUnformatted(cJSON_GetObjectItem(b, "final"));
+  cr_expect_str_eq(fa, fb, "%s", method);
+  char *ca = read_file(path_in_tmp("whole.csv")), *cb = read_file(path_in_tmp("part.csv"));
+  cr_expect(strcmp(ca, cb) == 0, "%s: the CSVs differ (%zu and %zu bytes; interrupted: %d)",
+            method, strlen(ca), strlen(cb), interrupted);
+  free(ca), free(cb), free(fa), free(fb);
+  cJSON_Delete(a);
+  cJSON_Delete(b);
+  run_output_free(&whole);
+  run_output_free(&first);
+  run_output_free(&second);
+}
+
+Test(truth, restart_explicit_is_bitwise) {
+  restart_matches("verlet", "--steps 8000000 --every 10000", 0.3);
+}
+Test(truth, restart_implicit_is_bitwise) {
+  restart_matches("gauss-2", "--dt 0.01 --t-end 3000 --every 100 --solver fixed-point", 0.4);
+}
+Test(truth, restart_variational_is_bitwise) {
+  restart_matches("vi-galerkin-gauss-2", "--dt 0.01 --t-end 2000 --every 100", 0.4);
+}
+
+Test(truth, restart_rejects_bad_checkpoints) {
+  run_output r = run_cli("run kepler --steps 100 --checkpoint ck --every-checkpoint 10");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  run_output_free(&r);
+  r = run_cli("run kepler --method rk4 --steps 100 --restart ck");
+  cr_expect_eq(r.status, 2);
+  cr_expect(strstr(r.err, "'verlet'") != NULL, "%s", r.err);
+  run_output_free(&r);
+  r = run_cli("run kepler --steps 200 --restart ck");
+  cr_expect_eq(r.status, 2);
+  cr_expect(strstr(r.err, "ends at") != NULL, "%s", r.err);
+  run_output_free(&r);
+  r = run_shell("head -c 100 ck > cut && GM run kepler --steps 100 --restart cut");
+  cr_expect_eq(r.status, 2);
+  cr_expect(strstr(r.err, "truncated") != NULL, "%s", r.err);
+  run_output_free(&r);
+  r = run_shell("GM run kepler --steps 100 --out x.csv >/dev/null && "
+                "GM run kepler --steps 100 --restart x.csv");
+  cr_expect_eq(r.status, 2);
+  cr_expect(strstr(r.err, "not a geomint checkpoint") != NULL, "%s", r.err);
+  run_output_free(&r);
+}
