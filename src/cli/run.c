@@ -21,6 +21,7 @@ static const char usage[] =
     "                     (default), fixed-point, fixed-point-positions (q'' = f(q))\n"
     "  --dt H             step size (default 0.01)\n"
     "  --t-end T          final time (default 10); the steps are shortened to end exactly there\n"
+    "                     (vi-sem-*, which choose their own steps: the first step reaching T)\n"
     "  --steps N          take N steps of size H instead (not together with --t-end)\n"
     "  --every K          observe (monitor and CSV) every K steps (default 1)\n"
     "  --out FILE.csv     write t, q, p (or y), H, rel_energy_error and the invariants\n"

@@ -371,11 +371,16 @@ static gm_status run_to_first_reaching(gm_integrator *it, double t_end, double h
   it->run_start = it->step_index;
   it->run_kind = 2;
   gm_status st = notify(it, it->step_index == 0);
-  const size_t max_steps = (size_t)1e15;
+  /* steps that collapse (no root of the energy equation near the previous step) must not run
+   * forever: at most 1000 times the steps of size h, and 10^15 */
+  const double planned = ceil((t_end - it->t) / h);
+  const size_t max_steps = (size_t)fmin(1e15, 1000.0 * planned + 1000.0);
   for (size_t k = 0; st == GM_OK && it->t < t_end; ++k) {
     if (k >= max_steps)
-      return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
-                     "%zu steps taken without reaching t = %g", k, t_end);
+      return gm_fail(it->errmsg, sizeof it->errmsg, GM_ENOCONV,
+                     "'%s': %zu steps of its own size (the last %.3g) did not reach t = %.17g "
+                     "from the step %g asked for: the steps collapsed",
+                     it->method->name, k, it->h_taken, t_end, h);
     st = advance(it, h, it->t + h);
     if (st == GM_OK) st = notify(it, 0);
   }
