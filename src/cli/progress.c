@@ -73,16 +73,16 @@ int cli_progress_update(cli_progress *p, double done, double total) {
   const double left = elapsed * (total - done) / done;
   char eta[32];
   format_duration(left, eta, sizeof eta);
-  if (!p->announced) {
-    p->announced = 1;
+  if (!p->long_run) { /* re-estimated at every update: `order` learns its total as it goes */
     if (elapsed + left < LONG_RUN_S) return 0;
     p->long_run = 1;
+    p->announced = 1;
     char all[32];
     format_duration(elapsed + left, all, sizeof all);
     fprintf(stderr, "geomint %s: %.3g steps, estimated %s at the current rate (Ctrl-C stops "
             "and keeps what was written)\n", p->command, total, all);
   }
-  if (!p->long_run || t - p->last_print < REDRAW_S) return 0;
+  if (t - p->last_print < REDRAW_S) return 0;
   p->last_print = t;
   fprintf(stderr, "\rgeomint %s: %5.1f%% of %.3g steps, %s left   ", p->command,
           100.0 * done / total, total, eta);

@@ -211,6 +211,11 @@ Test(truth, sigint_exits_130_with_whole_rows) {
   cr_expect(strstr(r.err, "left") == NULL && strstr(r.err, "estimated") == NULL, "%s", r.err);
   cr_expect_gt(check_whole_rows("long.csv"), 10);
   run_output_free(&r);
+  /* order's levels stop the same way */
+  r = run_shell("exec timeout --preserve-status -s INT 1 GM order --method verlet --t-end 1e6");
+  cr_expect_eq(r.status, 130, "exit %d: %s", r.status, r.err);
+  cr_expect(strstr(r.err, "interrupted") != NULL, "%s", r.err);
+  run_output_free(&r);
 }
 
 /* On a terminal (a pseudo-terminal from script(1)), a long run shows its estimate and a
