@@ -15,6 +15,7 @@
 #define GEOMINT_ODE_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "geomint/core.h"
 
@@ -196,8 +197,43 @@ gm_status gm_integrator_add_observer(gm_integrator *it, gm_observer_fn fn, void 
 gm_status gm_integrator_step(gm_integrator *it, double h);
 /* n_steps steps of size h. */
 gm_status gm_integrator_run(gm_integrator *it, size_t n_steps, double h);
-/* Fixed steps of equal size, at most h, ending exactly at t_end (h > 0, t_end > t). */
+/* Fixed steps of equal size, at most h, ending exactly at t_end (h > 0, t_end > t). Methods
+ * that choose their own step sizes (gm_integrator_chooses_steps: vi-sem-*) instead step until
+ * the first step that reaches or passes t_end, and stop there: the time reached
+ * (gm_integrator_time) is then t_end or up to one step later. */
 gm_status gm_integrator_integrate(gm_integrator *it, double t_end, double h);
+/* Does the method choose its own step sizes (the symplectic-energy-momentum rows)? */
+int gm_integrator_chooses_steps(const gm_integrator *it);
+
+/* ---- checkpoint and restart --------------------------------------------------------------- */
+/* A checkpoint holds everything the next step depends on: the method (and basic method, solver,
+ * compensation), the problem's state size, the time, the state, the compensated-summation
+ * carry, the step counter, the statistics, the method's own state (starting values of implicit
+ * solvers, the force of an FSAL splitting, the step and energy of vi-sem) and the run in
+ * progress (its time grid), plus up to GM_CHECKPOINT_MAX_EXTRA bytes of the caller's own
+ * (e.g. a monitor's state). Binary, in this machine's byte order, with a magic, a version and
+ * a checksum (FNV-1a, 64 bits). Saved during a run (from an observer) or after it; loading it
+ * into an integrator of the same method and problem and calling gm_integrator_resume continues
+ * that run bitwise identically to one that was not interrupted. */
+#define GM_CHECKPOINT_MAX_EXTRA 65536
+/* Write a checkpoint to f (borrowed, binary). extra (copied, extra_size bytes) may be NULL. */
+gm_status gm_integrator_save(gm_integrator *it, FILE *f, const void *extra, size_t extra_size);
+/* Write it to path atomically (a temporary file in the same directory, then rename). */
+gm_status gm_integrator_save_file(gm_integrator *it, const char *path, const void *extra,
+                                  size_t extra_size);
+/* Read a checkpoint into an integrator created for the same method, basic method and problem
+ * size (observers may already be added; they are not called again for the saved step). A
+ * truncated file, another kind of file, a checksum mismatch, another method, solver or state
+ * size is GM_EIO or GM_EINVAL with a message (gm_integrator_errmsg), the integrator
+ * unchanged. extra (extra_cap bytes, may be NULL) receives the caller's bytes, *extra_size
+ * (may be NULL) their number. */
+gm_status gm_integrator_load(gm_integrator *it, FILE *f, void *extra, size_t extra_cap,
+                             size_t *extra_size);
+gm_status gm_integrator_load_file(gm_integrator *it, const char *path, void *extra,
+                                  size_t extra_cap, size_t *extra_size);
+/* Continue the run that was in progress when the loaded checkpoint was saved (the remaining
+ * steps of gm_integrator_run / gm_integrator_integrate, on the same time grid). */
+gm_status gm_integrator_resume(gm_integrator *it);
 
 double gm_integrator_time(const gm_integrator *it);
 const double *gm_integrator_state(const gm_integrator *it); /* borrowed, valid until next call */
@@ -224,6 +260,17 @@ double gm_monitor_last_rel_energy_error(const gm_monitor *monitor);
 /* max over observed states of |I_k - I_k(y0)| */
 double gm_monitor_max_invariant_drift(const gm_monitor *monitor, size_t k);
 size_t gm_monitor_n_observed(const gm_monitor *monitor);
+/* gm_monitor_observe returns non-zero (stopping the run with GM_ECALLBACK) when the energy or
+ * an invariant is NaN or infinite at an observed state; this says which, at which step. */
+const char *gm_monitor_errmsg(const gm_monitor *monitor);
+/* What the monitor has recorded, as gm_monitor_state_size doubles (for checkpoints: saved with
+ * gm_integrator_save's extra bytes, loaded into a monitor created from the same y0). */
+size_t gm_monitor_state_size(const gm_monitor *monitor);
+void gm_monitor_state_save(const gm_monitor *monitor, double *out);
+void gm_monitor_state_load(gm_monitor *monitor, const double *in);
+/* The final time of the run in progress or last made (the checkpointed run after a load);
+ * NaN when none. */
+double gm_integrator_run_end_time(const gm_integrator *it);
 
 /* ---- empirical order ------------------------------------------------------------------- */
 
@@ -237,7 +284,61 @@ typedef struct gm_order_result {
   size_t n_fitted;                     /* levels used in the fit */
   int reference_is_exact;              /* 1: the problem's exact solution; 0: a reference run */
   const struct gm_method *reference;   /* the reference method, NULL when exact */
+  /* gm_order_measure_window only (zero from gm_order_measure): */
+  double refinement;                   /* ratio between levels */
+  size_t first_fitted;                 /* index of the first level inside the window */
+  double window_top, window_bottom;    /* the asymptotic window of the declared order, as
+                                          absolute errors (relative window × scale) */
+  int outcome;                         /* gm_order_outcome: measured, or why not */
+  double fit_deviation;                /* largest distance of a fitted error from the fitted
+                                          line, in decades (log10) */
 } gm_order_result;
+
+/* Why an order could not be measured (gm_order_result.outcome). */
+typedef enum gm_order_outcome {
+  GM_ORDER_MEASURED = 0,      /* at least three levels inside the window: order is their slope */
+  GM_ORDER_PRE_ASYMPTOTIC,    /* every error is above the window: the steps are too large */
+  GM_ORDER_ROUNDOFF,          /* the errors fall below the window (round-off) before three
+                                 levels land inside it: the asymptotic range of this order
+                                 lies at or below round-off on this problem */
+  GM_ORDER_TOO_FEW_LEVELS,    /* fewer than three levels reached the window */
+  GM_ORDER_IRREGULAR          /* the errors in the window stray from a power law by more than
+                                 GM_ORDER_MAX_DEVIATION decades (round-off, solver tolerance) */
+} gm_order_outcome;
+#define GM_ORDER_MAX_DEVIATION 0.05
+
+/* The asymptotic window of a method of order p, relative to the size of the solution
+ * (max(1, |y0|∞)): errors between *bottom and *top are fitted. Above it the error expansion's
+ * later terms still matter, below it round-off does. top = 10^−(p+2) clamped to [1e-7, 1e-3];
+ * bottom = top · 10^−min(6, 2p), at least 1e-12 (the window narrows with the order: at most 6
+ * decades, 2 per order). */
+void gm_order_window(int order, double *top, double *bottom);
+
+/* How gm_order_measure_window chooses its levels; zero fields are chosen automatically. */
+typedef struct gm_order_plan {
+  double dt0;          /* largest step; 0: the largest power of two (from min(1, T − t0))
+                          whose error is at or below the top of the window */
+  size_t n_levels;     /* 0: enough to span the window, at most GM_ORDER_MAX_LEVELS */
+  double refinement;   /* 0: min(2, 10^(1/(2p))), half a decade of error per level */
+  const struct gm_method *reference; /* borrowed; NULL: as in gm_order_measure */
+  /* optional: called every few steps with the steps done and the steps planned (the total
+   * grows while dt0 is searched); a non-zero return stops the measurement (GM_ECALLBACK) */
+  int (*progress)(void *ctx, double steps_done, double steps_total);
+  void *progress_ctx;  /* borrowed */
+} gm_order_plan;
+
+/* The order of the scheme's declared order window: levels as in gm_order_measure, chosen by
+ * `plan` (NULL: all automatic), and the slope fitted over the levels whose error lies inside
+ * gm_order_window(method->order) × scale, scale = max(1, |y0|∞). Without an exact solution the
+ * reference run's step is halved until two runs agree to 1% of the window's bottom (or stop
+ * improving). Levels whose shortened step (T − t0)/⌈(T − t0)/dt⌉ repeats the previous one are
+ * skipped; dts holds the steps actually taken. Returns GM_OK both when the order was measured (outcome GM_ORDER_MEASURED, the
+ * slope in out->order) and when it could not be (order NaN, outcome says why; dts and errors
+ * hold what was measured). A run that fails is an error as in gm_order_measure, except that
+ * once two levels are done a failing finer level ends the levels there. */
+gm_status gm_order_measure_window(const gm_scheme *scheme, const gm_problem *problem, double t0,
+                                  const double *y0, double t_end, const gm_order_plan *plan,
+                                  gm_order_result *out, gm_error *err);
 
 /* Integrate the scheme from (t0, y0) to t_end with steps dt0, dt0/r, dt0/r², ... (n_levels ≤
  * GM_ORDER_MAX_LEVELS; refinement r > 1, 2 is usual, less for very high orders, whose error

@@ -55,6 +55,9 @@ gm_status gm_variational_set_alpha(gm_integrator *it, double alpha);
 double gm_variational_discrete_energy(const gm_integrator *it);
 double gm_variational_last_energy_error(const gm_integrator *it);
 size_t gm_variational_energy_fallbacks(const gm_integrator *it);
+/* The largest |E_d − E| over the steps since the energy was set (NaN before it or for other
+ * methods): what `geomint run` reports, relative to |E|, as the discrete energy error. */
+double gm_variational_max_energy_error(const gm_integrator *it);
 
 /* ---- user-supplied discrete Lagrangians ---------------------------------------------------- */
 

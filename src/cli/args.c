@@ -154,3 +154,13 @@ int cli_check_positive(const char *command, const char *option, double value) {
   cli_error(command, "%s must be a positive finite number, got %g", option, value);
   return CLI_EXIT_USAGE;
 }
+
+int cli_check_step_count(const char *command, double span, double dt) {
+  const double steps = span / dt;
+  if (steps > 1e15) {
+    cli_error(command, "--dt %g is too small: %.3g steps over an interval of %g (at most 1e15)",
+              dt, steps, span);
+    return CLI_EXIT_USAGE;
+  }
+  return CLI_EXIT_OK;
+}

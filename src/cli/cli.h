@@ -63,6 +63,9 @@ int cli_parse(const char *command, int argc, char **argv, cli_option *options,
 const char *cli_setting_split(const char *item, char *name, size_t cap);
 /* Check a step size or time given on the command line: finite and > 0. */
 int cli_check_positive(const char *command, const char *option, double value);
+/* Check that an interval of length `span` in steps of `dt` is at most 1e15 steps (what the
+ * integrator accepts); prints the error (exit status 2) otherwise. */
+int cli_check_step_count(const char *command, double span, double dt);
 
 /* ---- suggestions (suggest.c) ------------------------------------------------------------ */
 /* The i-th candidate name, NULL past the end. */
@@ -103,6 +106,10 @@ typedef struct cli_sim_config {
   size_t monitor_every;
   size_t csv_every;
   const char *csv_path;   /* NULL: no CSV */
+  int quiet;              /* no progress line even on a terminal */
+  const char *checkpoint_path; /* NULL: no checkpoints */
+  size_t checkpoint_every;     /* steps between checkpoints (also one when interrupted) */
+  const char *restart_path;    /* NULL: start from the initial state */
 } cli_sim_config;
 
 typedef struct cli_sim_result {
@@ -114,12 +121,53 @@ typedef struct cli_sim_result {
   gm_monitor *monitor;    /* owned */
   size_t csv_rows;
   size_t energy_column;   /* 0-based CSV column of rel_energy_error, (size_t)-1 if none */
+  int ran;                /* the integration started: stats and the monitor are the run's */
+  int chooses_steps;      /* vi-sem-*: its own steps; the fields below are set */
+  double discrete_energy; /* E of the run (set by the first step) */
+  double max_rel_discrete_energy_error; /* max |E_d − E| / |E| over the steps */
+  size_t energy_fallbacks;
+  int restarted;          /* from restart_path, at restart_step / restart_t */
+  size_t restart_step;
+  double restart_t;
+  size_t checkpoints;     /* checkpoints written */
+  char error[GM_ERRMSG_SIZE + 128]; /* why it failed ("" on success) */
 } cli_sim_result;
 
-/* Run one integration; returns an exit status, printing the reason on failure. The CSV is
- * closed (and kept) in every case. */
+/* Run one integration; returns an exit status, printing the reason on failure (also kept in
+ * result->error). The CSV is closed (and kept, ending with a whole row) in every case. SIGINT
+ * stops the run at the next observation: CLI_EXIT_INTERRUPTED. */
 int cli_simulate(const char *command, const cli_sim_config *config, cli_sim_result *result);
 void cli_sim_result_clear(cli_sim_result *result);
+
+/* ---- long runs: progress and SIGINT (progress.c) ---------------------------------------- */
+#include <signal.h>
+/* Set by SIGINT while cli_interrupt_install is in effect; runs stop at the next observation. */
+extern volatile sig_atomic_t cli_interrupted;
+void cli_interrupt_install(void);
+void cli_interrupt_restore(void);
+/* Exit status of a run stopped by SIGINT. */
+#define CLI_EXIT_INTERRUPTED 130
+/* The monitor's state saved in a checkpoint: at most this many doubles. */
+#define CLI_MAX_MONITOR_STATE 256
+/* Steps between checks of the interrupt flag and progress updates during a run. */
+#define CLI_PROGRESS_EVERY 16
+
+typedef struct cli_progress {
+  const char *command;
+  int enabled;         /* stderr is a terminal and not --quiet */
+  double start, last_print;
+  int announced, long_run, printed;
+  double total_steps;  /* for cli_progress_observe: steps of this session */
+  double step_offset;  /* steps done before it (a restarted run) */
+} cli_progress;
+
+void cli_progress_start(cli_progress *progress, const char *command, int quiet);
+/* Report `done` of `total` steps; returns 1 when the run should stop (SIGINT). */
+int cli_progress_update(cli_progress *progress, double done, double total);
+/* An observer (ctx: a cli_progress with total_steps set). */
+int cli_progress_observe(void *ctx, size_t step, double t, const double *y);
+/* End the progress line (if one was drawn). */
+void cli_progress_end(cli_progress *progress);
 
 /* ---- JSON (json.c) ---------------------------------------------------------------------- */
 struct cJSON;

@@ -1,4 +1,5 @@
 /* geomint: the command-line program. Dispatches to one command per file. */
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
@@ -66,6 +67,8 @@ static int help(int argc, char **argv) {
 }
 
 int main(int argc, char **argv) {
+  /* a file size limit makes write(2) fail with EFBIG (reported) instead of killing us */
+  signal(SIGXFSZ, SIG_IGN);
   if (argc < 2) {
     print_usage(stderr);
     return CLI_EXIT_USAGE;

@@ -50,14 +50,21 @@ static size_t parse_size(const char *text) {
 static size_t max_file_bytes = GM_MESH_MAX_FILE_BYTES;
 
 /* Read a mesh; on failure print one line (with how to raise the size limit when that was hit). */
+/* A bad file is bad input (exit 2); running out of memory is a failure (exit 1). */
+static int input_status(gm_status st) {
+  return st == GM_ENOMEM ? CLI_EXIT_FAILURE : CLI_EXIT_USAGE;
+}
+
+/* Reads the mesh; CLI_EXIT_OK, or the exit status after printing the reader's message. */
 static int read_mesh(const char *path, gm_mesh **m) {
   gm_error err = {{0}};
-  if (gm_mesh_read_max(path, max_file_bytes, m, &err) == GM_OK) return 0;
+  gm_status st = gm_mesh_read_max(path, max_file_bytes, m, &err);
+  if (st == GM_OK) return CLI_EXIT_OK;
   if (strstr(err.message, "more than the limit of") != NULL)
     cli_error("mesh", "%s (raise it with --max-file-size)", err.message);
   else
     cli_error("mesh", "%s", err.message);
-  return 1;
+  return input_status(st);
 }
 
 static void print_info(const char *path, const gm_mesh_report *r) {
@@ -157,13 +164,14 @@ static int info_json(const char *path, const gm_mesh_report *r) {
 static int mesh_info(const char *path, int json) {
   gm_mesh *m = NULL;
   gm_error err = {{0}};
-  if (read_mesh(path, &m) != 0) return CLI_EXIT_FAILURE;
+  int status = read_mesh(path, &m);
+  if (status != CLI_EXIT_OK) return status;
   gm_mesh_report r;
   gm_status st = gm_mesh_quality(m, &r, &err);
   gm_mesh_free(m);
   if (st != GM_OK) {
     cli_error("mesh", "%s", err.message);
-    return CLI_EXIT_FAILURE;
+    return input_status(st);
   }
   if (json) return info_json(path, &r);
   print_info(path, &r);
@@ -173,7 +181,8 @@ static int mesh_info(const char *path, int json) {
 static int mesh_poisson(const char *path, const char *out) {
   gm_mesh *m = NULL;
   gm_error err = {{0}};
-  if (read_mesh(path, &m) != 0) return CLI_EXIT_FAILURE;
+  int status = read_mesh(path, &m);
+  if (status != CLI_EXIT_OK) return status;
   gm_poisson_report rep;
   double *u = malloc(m->n_vertices * sizeof(double));
   if (u == NULL) {
@@ -194,7 +203,7 @@ static int mesh_poisson(const char *path, const char *out) {
   printf("  %-24s %.6e\n", "max error", rep.error_max);
   printf("  %-24s %.6e\n", "L2 error", rep.error_l2);
   printf("  %-24s %.6e\n", "relative max error", rep.error_max / rep.solution_max);
-  int status = CLI_EXIT_OK;
+  status = CLI_EXIT_OK;
   if (out != NULL) {
     gm_complex *cx = NULL;
     st = gm_mesh_complex(m, &cx, &err);

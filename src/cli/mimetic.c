@@ -320,8 +320,21 @@ static int run_experiment(const experiment *ex, const char *dir, int plot) {
   if (rc == CLI_EXIT_OK) {
     printf("  convergence to t = %g, dt = %g .. %g: measured orders (state, invariant)\n",
            ex->conv_t_end, c.dts[0], c.dts[CONVERGENCE_LEVELS - 1]);
-    for (size_t k = 0; k < N_CONVERGENCE; ++k)
-      printf("  %-20s %8.2f %8.2f\n", method_names[k], c.order[k], c.invariant_order[k]);
+    for (size_t k = 0; k < N_CONVERGENCE; ++k) {
+      /* an invariant kept to round-off at every step has no order to fit */
+      char inv[32], state[32];
+      int kept = 1;
+      for (size_t l = 0; l < CONVERGENCE_LEVELS; ++l) kept &= c.invariant[k][l] <= 1e-13;
+      if (isfinite(c.invariant_order[k]))
+        snprintf(inv, sizeof inv, "%8.2f", c.invariant_order[k]);
+      else
+        snprintf(inv, sizeof inv, "%s", kept ? "round-off" : "   failed");
+      if (isfinite(c.order[k]))
+        snprintf(state, sizeof state, "%8.2f", c.order[k]);
+      else
+        snprintf(state, sizeof state, "%s", "   failed");
+      printf("  %-20s %s %s\n", method_names[k], state, inv);
+    }
   }
   if (rc == CLI_EXIT_OK && plot) {
     rc = draw(dir, ex, (const char(*)[4096])csv, ran, c.dts);

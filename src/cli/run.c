@@ -21,13 +21,27 @@ static const char usage[] =
     "                     (default), fixed-point, fixed-point-positions (q'' = f(q))\n"
     "  --dt H             step size (default 0.01)\n"
     "  --t-end T          final time (default 10); the steps are shortened to end exactly there\n"
+    "                     (vi-sem-*, which choose their own steps: the first step reaching T)\n"
     "  --steps N          take N steps of size H instead (not together with --t-end)\n"
     "  --every K          observe (monitor and CSV) every K steps (default 1)\n"
     "  --out FILE.csv     write t, q, p (or y), H, rel_energy_error and the invariants\n"
     "  --plot FILE.png    draw the relative energy error against time with gnuplot\n"
     "  --set name=value   change a parameter or an initial value (q1.., p1.., y1..); repeatable\n"
     "  --compensated      compensated (Kahan) summation of the state update\n"
-    "  --json             print one JSON object instead of the summary\n";
+    "  --json             print one JSON object instead of the summary (also when the run\n"
+    "                     fails: then with \"error\" and the statistics up to the failure)\n"
+    "  --quiet            no work estimate or progress line (shown on a terminal for runs\n"
+    "                     estimated to take more than 3 s)\n"
+    "  --checkpoint FILE  save a checkpoint to FILE every --every-checkpoint K steps (default:\n"
+    "                     only when interrupted) and when Ctrl-C stops the run\n"
+    "  --every-checkpoint K  steps between checkpoints\n"
+    "  --restart FILE     continue the run saved in FILE (same problem, --set, method, --basic,\n"
+    "                     --solver, --compensated, --dt and --t-end or --steps); the CSV given\n"
+    "                     with --out is continued after the checkpoint's last row, and the\n"
+    "                     result is bitwise that of the run without interruption\n\n"
+    "A state, energy or invariant that becomes NaN or infinite stops the run with an error\n"
+    "naming the step and the component; the CSV ends with the last finite row. Ctrl-C (SIGINT)\n"
+    "stops at the next step, keeps the CSV (whole rows) and exits with status 130.\n";
 
 typedef struct run_options {
   const char *method, *basic, *solver;
@@ -35,7 +49,9 @@ typedef struct run_options {
   size_t steps, every;
   const char *out, *plot;
   cli_settings settings;
-  int compensated, json;
+  int compensated, json, quiet;
+  const char *checkpoint, *restart;
+  size_t every_checkpoint;
 } run_options;
 
 static cJSON *final_state(const gm_problem *pb, const cli_sim_result *r) {
@@ -77,6 +93,23 @@ static int print_json(const char *problem, const gm_scheme *sc, const gm_problem
                         cli_json_number(gm_monitor_max_rel_energy_error(r->monitor)));
   cJSON_AddItemToObject(root, "final_rel_energy_error",
                         cli_json_number(gm_monitor_last_rel_energy_error(r->monitor)));
+  if (r->chooses_steps) { /* vi-sem-*: what the method keeps, and how it ended */
+    cJSON_AddTrueToObject(root, "chooses_steps");
+    cJSON_AddItemToObject(root, "t_end_requested", cli_json_number(o->t_end));
+    cJSON_AddItemToObject(root, "discrete_energy", cli_json_number(r->discrete_energy));
+    cJSON_AddItemToObject(root, "max_rel_discrete_energy_error",
+                          cli_json_number(r->max_rel_discrete_energy_error));
+    cJSON_AddNumberToObject(root, "energy_fallbacks", (double)r->energy_fallbacks);
+  }
+  if (r->restarted) {
+    cJSON_AddStringToObject(root, "restart", o->restart);
+    cJSON_AddNumberToObject(root, "restart_step", (double)r->restart_step);
+    cJSON_AddItemToObject(root, "restart_t", cli_json_number(r->restart_t));
+  }
+  if (o->checkpoint != NULL) {
+    cJSON_AddStringToObject(root, "checkpoint", o->checkpoint);
+    cJSON_AddNumberToObject(root, "checkpoints", (double)r->checkpoints);
+  }
   cJSON *inv = cJSON_AddObjectToObject(root, "invariants");
   for (size_t k = 0; k < pb->n_invariants; ++k)
     cJSON_AddItemToObject(inv, pb->invariants[k].name,
@@ -106,14 +139,28 @@ static void print_summary(const char *problem, const gm_scheme *sc, const gm_pro
   cli_scheme_name(sc, name, sizeof name);
   printf("%s with %s (order %d, %s%s)\n", problem, name, m->order,
          gm_method_family_name(m->family), o->compensated ? ", compensated" : "");
-  printf("steps             %zu of dt = %g, t = %g .. %.10g\n", r->stats.steps, o->dt, r->t0,
-         r->t_final);
+  if (r->chooses_steps)
+    printf("steps             %zu of its own size (from dt = %g), t = %g .. %.10g\n",
+           r->stats.steps, o->dt, r->t0, r->t_final);
+  else
+    printf("steps             %zu of dt = %g, t = %g .. %.10g\n", r->stats.steps, o->dt, r->t0,
+           r->t_final);
+  if (r->chooses_steps && r->t_final != o->t_end && o->steps == 0)
+    printf("note              %s chooses its own steps: stopped at the first step reaching "
+           "--t-end %g, t = %.10g\n", m->name, o->t_end, r->t_final);
+  if (r->restarted)
+    printf("restarted         from %s at step %zu, t = %.10g\n", o->restart, r->restart_step,
+           r->restart_t);
   if (gm_problem_has_energy(pb)) {
     printf("energy            H0 = %.10g\n", gm_monitor_initial_energy(r->monitor));
     printf("rel. energy error max %.3e, final %.3e\n",
            gm_monitor_max_rel_energy_error(r->monitor),
            gm_monitor_last_rel_energy_error(r->monitor));
   }
+  if (r->chooses_steps)
+    printf("discrete energy   E_d = %.10g, max |E_d - E0|/|E0| %.3e (what %s keeps), "
+           "%zu least-squares fallbacks\n", r->discrete_energy, r->max_rel_discrete_energy_error,
+           m->name, r->energy_fallbacks);
   for (size_t k = 0; k < pb->n_invariants; ++k)
     printf("%-17s max drift %.3e\n", pb->invariants[k].name,
            gm_monitor_max_invariant_drift(r->monitor, k));
@@ -132,6 +179,8 @@ static void print_summary(const char *problem, const gm_scheme *sc, const gm_pro
     print_vector("y", r->y_final, r->n_state);
   }
   if (o->out != NULL) printf("wrote %s (%zu rows)\n", o->out, r->csv_rows);
+  if (o->checkpoint != NULL)
+    printf("wrote %s (%zu checkpoints)\n", o->checkpoint, r->checkpoints);
   if (o->plot != NULL) printf("wrote %s\n", o->plot);
 }
 
@@ -158,6 +207,16 @@ static int check_options(const run_options *o, const cli_option *options, size_t
     cli_error("run", "--every must be at least 1");
     return CLI_EXIT_USAGE;
   }
+  if (seen(options, n_options, "--every-checkpoint") && o->checkpoint == NULL) {
+    cli_error("run", "--every-checkpoint needs --checkpoint FILE");
+    return CLI_EXIT_USAGE;
+  }
+  if (o->checkpoint != NULL && o->every_checkpoint == 0) {
+    if (seen(options, n_options, "--every-checkpoint")) {
+      cli_error("run", "--every-checkpoint must be at least 1");
+      return CLI_EXIT_USAGE;
+    }
+  }
   return CLI_EXIT_OK;
 }
 
@@ -167,7 +226,8 @@ static int run_model(const char *problem, const gm_model *model, const gm_scheme
   const gm_problem *pb = gm_model_problem(model);
   const gm_method *m = sc->method;
   cli_sim_config c = {*sc, model, o->dt, o->t_end, o->steps, o->every, o->every,
-                      o->out != NULL ? o->out : tmp_csv};
+                      o->out != NULL ? o->out : tmp_csv, o->quiet, o->checkpoint,
+                      o->every_checkpoint, o->restart};
   cli_sim_result r;
   int status = cli_simulate("run", &c, &r);
   if (status == CLI_EXIT_OK && o->plot != NULL) {
@@ -181,13 +241,37 @@ static int run_model(const char *problem, const gm_model *model, const gm_scheme
       status = print_json(problem, sc, pb, o, &r);
     else
       print_summary(problem, sc, pb, o, &r);
+  } else if (o->json) {
+    /* one JSON object also for a failed run: the error and what was done up to it */
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddStringToObject(root, "problem", problem);
+    cJSON_AddStringToObject(root, "method", m->name);
+    cJSON_AddStringToObject(root, "error", r.error);
+    cJSON_AddNumberToObject(root, "exit_status", status);
+    if (r.ran) {
+      cJSON_AddNumberToObject(root, "steps", (double)r.stats.steps);
+      cJSON_AddItemToObject(root, "t0", cli_json_number(r.t0));
+      cJSON_AddItemToObject(root, "t", cli_json_number(r.t_final));
+      cJSON_AddNumberToObject(root, "force_evals", (double)r.stats.force_evals);
+      cJSON_AddNumberToObject(root, "newton_iterations", (double)r.stats.newton_iterations);
+      cJSON_AddNumberToObject(root, "newton_failures", (double)r.stats.newton_failures);
+      cJSON_AddItemToObject(root, "max_rel_energy_error",
+                            cli_json_number(gm_monitor_max_rel_energy_error(r.monitor)));
+      cJSON_AddItemToObject(root, "final", final_state(pb, &r));
+      if (o->out != NULL) {
+        cJSON_AddStringToObject(root, "csv", o->out);
+        cJSON_AddNumberToObject(root, "csv_rows", (double)r.csv_rows);
+      }
+    }
+    cli_json_print(root);
   }
   cli_sim_result_clear(&r);
   return status;
 }
 
 static int run_main(int argc, char **argv) {
-  run_options o = {"verlet", NULL, NULL, 0.01, 10.0, 0, 1, NULL, NULL, {0, {0}}, 0, 0};
+  run_options o = {"verlet", NULL, NULL, 0.01, 10.0, 0, 1, NULL, NULL, {0, {0}}, 0, 0, 0,
+                   NULL, NULL, 0};
   cli_option options[] = {
       {"--method", CLI_ARG_STRING, &o.method, 0}, {"--dt", CLI_ARG_DOUBLE, &o.dt, 0},
       {"--basic", CLI_ARG_STRING, &o.basic, 0},   {"--solver", CLI_ARG_STRING, &o.solver, 0},
@@ -195,7 +279,10 @@ static int run_main(int argc, char **argv) {
       {"--every", CLI_ARG_COUNT, &o.every, 0},    {"--out", CLI_ARG_STRING, &o.out, 0},
       {"--plot", CLI_ARG_STRING, &o.plot, 0},     {"--set", CLI_ARG_SETTING, &o.settings, 0},
       {"--compensated", CLI_ARG_FLAG, &o.compensated, 0},
-      {"--json", CLI_ARG_FLAG, &o.json, 0}};
+      {"--json", CLI_ARG_FLAG, &o.json, 0},       {"--quiet", CLI_ARG_FLAG, &o.quiet, 0},
+      {"--checkpoint", CLI_ARG_STRING, &o.checkpoint, 0},
+      {"--every-checkpoint", CLI_ARG_COUNT, &o.every_checkpoint, 0},
+      {"--restart", CLI_ARG_STRING, &o.restart, 0}};
   const char *problem[1];
   size_t n_problem = 0;
   int status = cli_parse("run", argc, argv, options, sizeof options / sizeof options[0],

@@ -98,3 +98,25 @@ static gm_status set_solver(gm_integrator *it, gm_solver solver) {
 }
 
 const gm_stepper gm_composition_stepper = {init, step, release, invalidate, NULL, set_solver};
+
+/* Checkpoints: the state of the basic method's integrator (its starting values). */
+static const gm_stepper_state *inner_state(const gm_integrator *it) {
+  const composition_work *w = it->work;
+  return gm_stepper_state_of(w->inner->stepper);
+}
+static size_t state_size(const gm_integrator *it) {
+  const gm_stepper_state *s = inner_state(it);
+  const composition_work *w = it->work;
+  return s != NULL && s->size != NULL ? s->size(w->inner) : 0;
+}
+static void state_save(const gm_integrator *it, unsigned char *out) {
+  const gm_stepper_state *s = inner_state(it);
+  const composition_work *w = it->work;
+  if (s != NULL && s->save != NULL) s->save(w->inner, out);
+}
+static gm_status state_load(gm_integrator *it, const unsigned char *in) {
+  const gm_stepper_state *s = inner_state(it);
+  composition_work *w = it->work;
+  return s != NULL && s->load != NULL ? s->load(w->inner, in) : GM_OK;
+}
+const gm_stepper_state gm_composition_stepper_state = {0, state_size, state_save, state_load};

@@ -324,3 +324,19 @@ size_t gm_discrete_gradient_quadrature(const gm_integrator *it) {
   const dg_work *w = it->work;
   return w->kind == GM_DG_AVERAGE_VECTOR_FIELD ? w->n_quad : 0;
 }
+
+/* Checkpoints: the previous step's increment and size (the next step's starting value). */
+static size_t state_size(const gm_integrator *it) { return sizeof(double) * (1 + it->n); }
+static void state_save(const gm_integrator *it, unsigned char *out) {
+  const dg_work *w = it->work;
+  memcpy(out, &w->h_prev, sizeof(double));
+  memcpy(out + sizeof(double), w->delta_prev, sizeof(double) * it->n);
+}
+static gm_status state_load(gm_integrator *it, const unsigned char *in) {
+  dg_work *w = it->work;
+  memcpy(&w->h_prev, in, sizeof(double));
+  memcpy(w->delta_prev, in + sizeof(double), sizeof(double) * it->n);
+  return GM_OK;
+}
+const gm_stepper_state gm_discrete_gradient_stepper_state = {0, state_size, state_save,
+                                                             state_load};

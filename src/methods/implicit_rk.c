@@ -364,3 +364,22 @@ static gm_status set_solver(gm_integrator *it, gm_solver solver) {
 }
 
 const gm_stepper gm_implicit_rk_stepper = {init, step, release, invalidate, NULL, set_solver};
+
+/* Checkpoints: the previous step's stage increments and step size, from which the next step
+ * starts its iteration (collocation polynomial extrapolated). */
+static size_t state_size(const gm_integrator *it) {
+  const implicit_rk_work *w = it->work;
+  return sizeof(double) * (1 + w->tab->n_stages * it->n);
+}
+static void state_save(const gm_integrator *it, unsigned char *out) {
+  const implicit_rk_work *w = it->work;
+  memcpy(out, &w->h_prev, sizeof(double));
+  memcpy(out + sizeof(double), w->z_prev, sizeof(double) * w->tab->n_stages * it->n);
+}
+static gm_status state_load(gm_integrator *it, const unsigned char *in) {
+  implicit_rk_work *w = it->work;
+  memcpy(&w->h_prev, in, sizeof(double));
+  memcpy(w->z_prev, in + sizeof(double), sizeof(double) * w->tab->n_stages * it->n);
+  return GM_OK;
+}
+const gm_stepper_state gm_implicit_rk_stepper_state = {0, state_size, state_save, state_load};

@@ -496,3 +496,24 @@ size_t gm_integrator_quadrature(const gm_integrator *it) {
     return gm_discrete_gradient_quadrature(it);
   return 0;
 }
+
+/* Checkpoints: the previous step's coefficients and size (starting values of the next step).
+ * The dense output of the last step (gm_mimetic_dense_output) is not saved: after a restart it
+ * is available again after the next step. */
+static size_t state_size(const gm_integrator *it) {
+  const mimetic_work *w = it->work;
+  return sizeof(double) * (1 + w->p * it->n);
+}
+static void state_save(const gm_integrator *it, unsigned char *out) {
+  const mimetic_work *w = it->work;
+  memcpy(out, &w->h_prev, sizeof(double));
+  memcpy(out + sizeof(double), w->z_prev, sizeof(double) * w->p * it->n);
+}
+static gm_status state_load(gm_integrator *it, const unsigned char *in) {
+  mimetic_work *w = it->work;
+  memcpy(&w->h_prev, in, sizeof(double));
+  memcpy(w->z_prev, in + sizeof(double), sizeof(double) * w->p * it->n);
+  w->has_dense = 0;
+  return GM_OK;
+}
+const gm_stepper_state gm_mimetic_stepper_state = {0, state_size, state_save, state_load};

@@ -203,3 +203,22 @@ static gm_status run(gm_integrator *it, const gm_run *r, size_t k_from, size_t k
 }
 
 const gm_stepper gm_splitting_stepper = {init, step, release, invalidate, run, NULL};
+
+/* Checkpoints: the force kept for the first kick of the next step (FSAL), so that a restarted
+ * run evaluates (and counts) exactly the forces an uninterrupted one does. */
+static size_t state_size(const gm_integrator *it) { return sizeof(double) * (1 + it->dim); }
+static void state_save(const gm_integrator *it, unsigned char *out) {
+  const splitting_work *w = it->work;
+  const double valid = w->force_valid ? 1.0 : 0.0;
+  memcpy(out, &valid, sizeof valid);
+  memcpy(out + sizeof valid, w->force, sizeof(double) * it->dim);
+}
+static gm_status state_load(gm_integrator *it, const unsigned char *in) {
+  splitting_work *w = it->work;
+  double valid;
+  memcpy(&valid, in, sizeof valid);
+  w->force_valid = valid != 0.0;
+  memcpy(w->force, in + sizeof valid, sizeof(double) * it->dim);
+  return GM_OK;
+}
+const gm_stepper_state gm_splitting_stepper_state = {0, state_size, state_save, state_load};

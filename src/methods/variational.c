@@ -216,3 +216,30 @@ gm_status gm_variational_set_alpha(gm_integrator *it, double alpha) {
   w->have_prev = 0;
   return init_engine(it, w);
 }
+
+/* Checkpoints: the previous step's control points and multipliers and its size, the starting
+ * values of the next step. */
+static size_t state_size(const gm_integrator *it) {
+  const vi_work *w = it->work;
+  return sizeof(double) * (2 + (w->degree * it->dim + 1) + (w->degree * w->e.m + 1));
+}
+static void state_save(const gm_integrator *it, unsigned char *out) {
+  const vi_work *w = it->work;
+  const double head[2] = {w->have_prev ? 1.0 : 0.0, w->h_prev};
+  const size_t nz = w->degree * it->dim + 1, nl = w->degree * w->e.m + 1;
+  memcpy(out, head, sizeof head);
+  memcpy(out + sizeof head, w->z_prev, nz * sizeof(double));
+  memcpy(out + sizeof head + nz * sizeof(double), w->lam_prev, nl * sizeof(double));
+}
+static gm_status state_load(gm_integrator *it, const unsigned char *in) {
+  vi_work *w = it->work;
+  double head[2];
+  const size_t nz = w->degree * it->dim + 1, nl = w->degree * w->e.m + 1;
+  memcpy(head, in, sizeof head);
+  w->have_prev = head[0] != 0.0;
+  w->h_prev = head[1];
+  memcpy(w->z_prev, in + sizeof head, nz * sizeof(double));
+  memcpy(w->lam_prev, in + sizeof head + nz * sizeof(double), nl * sizeof(double));
+  return GM_OK;
+}
+const gm_stepper_state gm_variational_stepper_state = {0, state_size, state_save, state_load};

@@ -44,6 +44,7 @@ typedef struct {
   double *z_prev, *dp;
   size_t fallbacks;
   double last_energy_error;
+  double max_energy_error; /* max |E_d − E| over the steps since the energy was set */
 } sem_work;
 
 static gm_status init(gm_integrator *it) {
@@ -328,8 +329,45 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
   }
   memcpy(w->z_prev, e->x, s * d * sizeof(double));
   w->h_prev = e->h;
+  if (!w->have_energy) w->max_energy_error = 0.0;
+  w->max_energy_error = fmax(w->max_energy_error, fabs(w->last_energy_error));
   w->have_energy = 1;
   it->h_taken = e->h;
+  return GM_OK;
+}
+
+/* Checkpoints: what the next step depends on besides the state — the discrete energy, the last
+ * step (the next one's starting guess), the last control points (extrapolated starting
+ * values) — and the counters the run reports. */
+typedef struct {
+  double energy, h_prev, last_energy_error, max_energy_error;
+  unsigned long long have_energy, fallbacks;
+} sem_saved;
+
+static size_t state_size(const gm_integrator *it) {
+  const sem_work *w = it->work;
+  return sizeof(sem_saved) + w->e.s * w->e.d * sizeof(double);
+}
+
+static void state_save(const gm_integrator *it, unsigned char *out) {
+  const sem_work *w = it->work;
+  sem_saved v = {w->energy, w->h_prev, w->last_energy_error, w->max_energy_error,
+                 (unsigned long long)w->have_energy, (unsigned long long)w->fallbacks};
+  memcpy(out, &v, sizeof v);
+  memcpy(out + sizeof v, w->z_prev, w->e.s * w->e.d * sizeof(double));
+}
+
+static gm_status state_load(gm_integrator *it, const unsigned char *in) {
+  sem_work *w = it->work;
+  sem_saved v;
+  memcpy(&v, in, sizeof v);
+  w->energy = v.energy;
+  w->h_prev = v.h_prev;
+  w->last_energy_error = v.last_energy_error;
+  w->max_energy_error = v.max_energy_error;
+  w->have_energy = v.have_energy != 0;
+  w->fallbacks = (size_t)v.fallbacks;
+  memcpy(w->z_prev, in + sizeof v, w->e.s * w->e.d * sizeof(double));
   return GM_OK;
 }
 
@@ -345,6 +383,7 @@ static gm_status set_solver(gm_integrator *it, gm_solver solver) {
 }
 
 const gm_stepper gm_sem_stepper = {init, step, release, invalidate, NULL, set_solver};
+const gm_stepper_state gm_sem_stepper_state = {1, state_size, state_save, state_load};
 
 static sem_work *sem_of(const gm_integrator *it) {
   return (it != NULL && it->stepper == &gm_sem_stepper) ? it->work : NULL;
@@ -358,6 +397,11 @@ double gm_variational_discrete_energy(const gm_integrator *it) {
 double gm_variational_last_energy_error(const gm_integrator *it) {
   const sem_work *w = sem_of(it);
   return (w != NULL && w->have_energy) ? w->last_energy_error : NAN;
+}
+
+double gm_variational_max_energy_error(const gm_integrator *it) {
+  const sem_work *w = sem_of(it);
+  return (w != NULL && w->have_energy) ? w->max_energy_error : NAN;
 }
 
 size_t gm_variational_energy_fallbacks(const gm_integrator *it) {

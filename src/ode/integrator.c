@@ -207,6 +207,7 @@ gm_status gm_integrator_set_state(gm_integrator *it, double t, const double *y) 
   memset(it->carry, 0, it->n * sizeof *it->carry);
   it->t = t;
   it->step_index = 0;
+  it->run_kind = 0;
   for (size_t k = 0; k < it->n_observers; ++k) it->observers[k].last_step = SIZE_MAX;
   if (it->stepper->invalidate != NULL) it->stepper->invalidate(it);
   it->errmsg[0] = '\0';
@@ -252,9 +253,13 @@ static gm_status notify(gm_integrator *it, int all) {
 
 gm_status gm_nonfinite_state(gm_integrator *it, size_t component, double t_new) {
   if (it->stepper->invalidate != NULL) it->stepper->invalidate(it);
+  char name[32] = "";
+  if (gm_problem_has_momenta(it->problem))
+    snprintf(name, sizeof name, " (%c%zu)", component < it->dim ? 'q' : 'p',
+             component % it->dim + 1);
   return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
-                 "state component %zu became %g in the step from t = %.17g to t = %.17g",
-                 component + 1, it->y_next[component], it->t, t_new);
+                 "state component %zu%s became %g in step %zu, from t = %.17g to t = %.17g",
+                 component + 1, name, it->y_next[component], it->step_index + 1, it->t, t_new);
 }
 
 /* Advance one step of size h to the time t_new; the state is unchanged on failure. */
@@ -324,10 +329,14 @@ static gm_status run_chunk(gm_integrator *it, const gm_run *run, size_t k_from, 
 /* n steps of size h from the current time; times are t0 + k·h (no accumulated drift), the
  * last is t_last exactly. Observers are called between chunks of steps, so how often a run
  * is observed never changes what it computes. */
-static gm_status run_steps(gm_integrator *it, size_t n_steps, double h, double t_last) {
-  const gm_run run = {it->t, h, t_last, n_steps};
+static gm_status run_steps_from(gm_integrator *it, const gm_run *run_in, size_t k0) {
+  const gm_run run = *run_in;
+  const size_t n_steps = run.n_steps;
+  it->run = run;
+  it->run_start = it->step_index - k0;
+  it->run_kind = 1;
   gm_status st = notify(it, it->step_index == 0);
-  for (size_t k = 0; k < n_steps && st == GM_OK;) {
+  for (size_t k = k0; k < n_steps && st == GM_OK;) {
     size_t due = next_observation(it, it->step_index) - it->step_index;
     size_t k_to = due < n_steps - k ? k + due : n_steps;
     st = run_chunk(it, &run, k, k_to);
@@ -338,12 +347,47 @@ static gm_status run_steps(gm_integrator *it, size_t n_steps, double h, double t
   return st;
 }
 
+static gm_status run_steps(gm_integrator *it, size_t n_steps, double h, double t_last) {
+  const gm_run run = {it->t, h, t_last, n_steps};
+  return run_steps_from(it, &run, 0);
+}
+
 gm_status gm_integrator_run(gm_integrator *it, size_t n_steps, double h) {
   if (it == NULL) return GM_EINVAL;
   gm_status st = check_step(it, h);
   if (st != GM_OK) return st;
   return run_steps(it, n_steps, h, it->t + (double)n_steps * h);
 }
+
+int gm_integrator_chooses_steps(const gm_integrator *it) {
+  const gm_stepper_state *extra = it != NULL ? gm_stepper_state_of(it->stepper) : NULL;
+  return extra != NULL && extra->chooses_steps;
+}
+
+/* A method that chooses its own steps (vi-sem-*): steps until the first that reaches or passes
+ * t_end (its last step is not shortened: that would break the energy equation it solves). */
+static gm_status run_to_first_reaching(gm_integrator *it, double t_end, double h) {
+  it->run = (gm_run){it->t, h, t_end, 0};
+  it->run_start = it->step_index;
+  it->run_kind = 2;
+  gm_status st = notify(it, it->step_index == 0);
+  /* steps that collapse (no root of the energy equation near the previous step) must not run
+   * forever: at most 1000 times the steps of size h, and 10^15 */
+  const double planned = ceil((t_end - it->t) / h);
+  const size_t max_steps = (size_t)fmin(1e15, 1000.0 * planned + 1000.0);
+  for (size_t k = 0; st == GM_OK && it->t < t_end; ++k) {
+    if (k >= max_steps)
+      return gm_fail(it->errmsg, sizeof it->errmsg, GM_ENOCONV,
+                     "'%s': %zu steps of its own size (the last %.3g) did not reach t = %.17g "
+                     "from the step %g asked for: the steps collapsed",
+                     it->method->name, k, it->h_taken, t_end, h);
+    st = advance(it, h, it->t + h);
+    if (st == GM_OK) st = notify(it, 0);
+  }
+  if (st == GM_OK) st = notify(it, 1);
+  return st;
+}
+
 
 gm_status gm_integrator_integrate(gm_integrator *it, double t_end, double h) {
   if (it == NULL) return GM_EINVAL;
@@ -353,6 +397,7 @@ gm_status gm_integrator_integrate(gm_integrator *it, double t_end, double h) {
   if (!isfinite(t_end) || t_end <= it->t)
     return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
                    "final time %g must be finite and after the current time %g", t_end, it->t);
+  if (gm_integrator_chooses_steps(it)) return run_to_first_reaching(it, t_end, h);
   double ratio = (t_end - it->t) / h;
   /* A ratio a few ulps above an integer is that integer: no sliver step at the end. */
   double n_real = ceil(ratio - 1e-9 * fmax(1.0, ratio));
@@ -362,6 +407,21 @@ gm_status gm_integrator_integrate(gm_integrator *it, double t_end, double h) {
                    "%.3g steps requested: step size too small for this interval", n_real);
   size_t n_steps = (size_t)n_real;
   return run_steps(it, n_steps, (t_end - it->t) / (double)n_steps, t_end);
+}
+
+gm_status gm_integrator_resume(gm_integrator *it) {
+  if (it == NULL) return GM_EINVAL;
+  if (it->run_kind == 2) return run_to_first_reaching(it, it->run.t_last, it->run.h);
+  if (it->run_kind != 1 || it->step_index < it->run_start ||
+      it->step_index - it->run_start > it->run.n_steps)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                   "no run to resume: load a checkpoint taken during gm_integrator_run or "
+                   "gm_integrator_integrate");
+  return run_steps_from(it, &it->run, it->step_index - it->run_start);
+}
+
+double gm_integrator_run_end_time(const gm_integrator *it) {
+  return it != NULL && it->run_kind != 0 ? it->run.t_last : NAN;
 }
 
 double gm_integrator_time(const gm_integrator *it) { return it ? it->t : NAN; }

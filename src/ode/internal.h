@@ -63,6 +63,12 @@ struct gm_integrator {
   double *structure, *gradient; /* Poisson: S(y) (n×n) and ∇H(y) (n) */
   double h_taken;             /* a stepper that chooses its own step size (vi-sem-*) writes the
                                 step it took here; NaN: the step asked for */
+  /* the run in progress or last made (a checkpoint saves it, so that a restart continues its
+   * time grid): fixed steps `run` from step index run_start, or (run_until) steps of a method
+   * that chooses its own until the first reaching run.t_last */
+  gm_run run;
+  size_t run_start;
+  int run_kind;               /* 0 none, 1 fixed steps, 2 until t_end */
   char errmsg[GM_ERRMSG_SIZE];
 };
 
@@ -120,6 +126,22 @@ static inline gm_status gm_commit_step(gm_integrator *it, double t_new) {
   it->stats.steps++;
   return GM_OK;
 }
+
+/* What a stepper keeps between steps, beyond the state (src/methods/stepper_state.c). */
+typedef struct gm_stepper_state {
+  /* Non-zero when the stepper chooses its own step sizes (it writes it->h_taken): then
+   * gm_integrator_integrate stops at the first step that reaches t_end. */
+  int chooses_steps;
+  /* Optional: the method's own state that the next step depends on (starting values, the step
+   * size and energy of vi-sem, ...), saved in checkpoints: its size in bytes, and copies out
+   * of and into it (the load follows a gm_integrator_set_state of the saved state). */
+  size_t (*size)(const gm_integrator *it);
+  void (*save)(const gm_integrator *it, unsigned char *out);
+  gm_status (*load)(gm_integrator *it, const unsigned char *in);
+} gm_stepper_state;
+
+/* The stepper's extras; NULL when it keeps nothing between steps that changes the next one. */
+const gm_stepper_state *gm_stepper_state_of(const gm_stepper *stepper);
 
 /* ---- steppers (src/methods) ------------------------------------------------------------ */
 /* The stepper of a method (of a composition: depends on its basic method). */

@@ -10,6 +10,7 @@ struct gm_monitor {
   double energy0, max_rel_energy, last_rel_energy;
   double *invariant0, *max_drift;
   size_t n_observed;
+  char errmsg[GM_ERRMSG_SIZE];
 };
 
 gm_status gm_monitor_create(const gm_problem *problem, const double *y0, gm_monitor **out) {
@@ -43,15 +44,34 @@ void gm_monitor_free(gm_monitor *mon) {
 }
 
 int gm_monitor_observe(void *ctx, size_t step, double t, const double *y) {
-  (void)step;
-  (void)t;
   gm_monitor *mon = ctx;
   const gm_problem *pb = mon->problem;
+  /* A non-finite energy or invariant stops the run here, before later observers (a CSV
+   * writer added after the monitor) record the state; the drifts keep their last finite
+   * values. */
+  double rel = NAN;
   if (gm_problem_has_energy(pb)) {
-    double dh = fabs(gm_problem_energy(pb, y) - mon->energy0);
-    double rel = mon->energy0 != 0.0 ? dh / fabs(mon->energy0) : dh;
+    double h = gm_problem_energy(pb, y);
+    if (!isfinite(h)) {
+      gm_fail(mon->errmsg, sizeof mon->errmsg, GM_EDOMAIN,
+              "the energy became %g at step %zu (t = %.17g)", h, step, t);
+      return 1;
+    }
+    double dh = fabs(h - mon->energy0);
+    rel = mon->energy0 != 0.0 ? dh / fabs(mon->energy0) : dh;
+  }
+  for (size_t i = 0; i < pb->n_invariants; ++i) {
+    double v = pb->invariants[i].value(pb->ctx, y);
+    if (!isfinite(v)) {
+      gm_fail(mon->errmsg, sizeof mon->errmsg, GM_EDOMAIN,
+              "the invariant '%s' became %g at step %zu (t = %.17g)", pb->invariants[i].name,
+              v, step, t);
+      return 1;
+    }
+  }
+  if (gm_problem_has_energy(pb)) {
     mon->last_rel_energy = rel;
-    if (!(rel <= mon->max_rel_energy)) mon->max_rel_energy = rel; /* NaN propagates */
+    if (!(rel <= mon->max_rel_energy)) mon->max_rel_energy = rel;
   }
   for (size_t i = 0; i < pb->n_invariants; ++i) {
     double drift = fabs(pb->invariants[i].value(pb->ctx, y) - mon->invariant0[i]);
@@ -60,6 +80,8 @@ int gm_monitor_observe(void *ctx, size_t step, double t, const double *y) {
   mon->n_observed++;
   return 0;
 }
+
+const char *gm_monitor_errmsg(const gm_monitor *mon) { return mon ? mon->errmsg : ""; }
 
 double gm_monitor_initial_energy(const gm_monitor *mon) { return mon ? mon->energy0 : NAN; }
 double gm_monitor_max_rel_energy_error(const gm_monitor *mon) {
@@ -73,3 +95,24 @@ double gm_monitor_max_invariant_drift(const gm_monitor *mon, size_t k) {
   return mon->max_drift[k];
 }
 size_t gm_monitor_n_observed(const gm_monitor *mon) { return mon ? mon->n_observed : 0; }
+
+/* Checkpoints: what the monitor has recorded (its initial values come from y0 again). */
+size_t gm_monitor_state_size(const gm_monitor *mon) {
+  return mon != NULL ? 3 + mon->problem->n_invariants : 0;
+}
+
+void gm_monitor_state_save(const gm_monitor *mon, double *out) {
+  if (mon == NULL || out == NULL) return;
+  out[0] = mon->max_rel_energy;
+  out[1] = mon->last_rel_energy;
+  out[2] = (double)mon->n_observed;
+  for (size_t i = 0; i < mon->problem->n_invariants; ++i) out[3 + i] = mon->max_drift[i];
+}
+
+void gm_monitor_state_load(gm_monitor *mon, const double *in) {
+  if (mon == NULL || in == NULL) return;
+  mon->max_rel_energy = in[0];
+  mon->last_rel_energy = in[1];
+  mon->n_observed = (size_t)in[2];
+  for (size_t i = 0; i < mon->problem->n_invariants; ++i) mon->max_drift[i] = in[3 + i];
+}

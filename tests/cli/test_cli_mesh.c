@@ -117,11 +117,11 @@ Test(cli_mesh, bad_files_and_arguments) {
         "$Elements\n1\n1 2 2 0 0 1 2 9\n$EndElements\n", f);
   fclose(f);
   run_output r = run_cli("mesh info bad.msh");
-  cr_expect_eq(r.status, 1);
+  cr_expect_eq(r.status, 2); /* a bad file is bad input */
   cr_expect(strstr(r.err, "line 12") && strstr(r.err, "node 9"), "%s", r.err);
   run_output_free(&r);
   r = run_cli("mesh info missing.off");
-  cr_expect_eq(r.status, 1);
+  cr_expect_eq(r.status, 2);
   cr_expect(strstr(r.err, "cannot open") != NULL, "%s", r.err);
   run_output_free(&r);
   r = run_cli("mesh info");
