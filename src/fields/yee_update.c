@@ -17,7 +17,8 @@
  * 2000); the ψ terms are added by separate slab loops (yee_cpml.c). On an axis the dimension
  * lacks the stride is 0, so the difference is exactly 0. One kernel per component and per
  * choice of (uniform/per-location coefficients, lossless/lossy) is selected at create time:
- * no branch on options inside the loops. OpenMP over the two outer loops (z, y rows). */
+ * no branch on options inside the loops. OpenMP over the two outer loops (z, y rows), SIMD over
+ * the inner one (elementwise, no reductions: bitwise identical for any thread count). */
 #include "fields/internal.h"
 
 #define E_KERNEL(NAME, A, B, C, INVB, INVC, UPDATE)                                           \
@@ -35,14 +36,12 @@
     const long i0 = (long)bx->lo[0], i1 = i0 + (long)bx->cnt[0];                              \
     const long j0 = (long)bx->lo[1], j1 = j0 + (long)bx->cnt[1];                              \
     const long k0 = (long)bx->lo[2], k1 = k0 + (long)bx->cnt[2];                              \
-    const int nt = s->n_threads;                                                              \
-    const size_t work = bx->cnt[0] * bx->cnt[1] * bx->cnt[2];                                 \
     (void)cbv; (void)cav; (void)cb0; (void)ca0; (void)ix; (void)iy; (void)iz;                 \
-    YEE_OMP(omp parallel for collapse(2) schedule(static) num_threads(nt)                     \
-                if (work > YEE_OMP_MIN))                                                      \
+    YEE_OMP(omp for collapse(2) schedule(static) nowait)                                      \
     for (long k = k0; k < k1; ++k)                                                            \
       for (long j = j0; j < j1; ++j) {                                                        \
         const long row = (long)yee_idx(&s->L, 0, j, k);                                       \
+        YEE_OMP(omp simd)                                                                     \
         for (long i = i0; i < i1; ++i) {                                                      \
           const long q = row + i;                                                             \
           const double curl = (Hc[q] - Hc[q - sb]) * (INVB) - (Hb[q] - Hb[q - sc]) * (INVC);  \
@@ -65,14 +64,12 @@
     const long i0 = (long)bx->lo[0], i1 = i0 + (long)bx->cnt[0];                              \
     const long j0 = (long)bx->lo[1], j1 = j0 + (long)bx->cnt[1];                              \
     const long k0 = (long)bx->lo[2], k1 = k0 + (long)bx->cnt[2];                              \
-    const int nt = s->n_threads;                                                              \
-    const size_t work = bx->cnt[0] * bx->cnt[1] * bx->cnt[2];                                 \
     (void)cbv; (void)cb0; (void)ix; (void)iy; (void)iz;                                       \
-    YEE_OMP(omp parallel for collapse(2) schedule(static) num_threads(nt)                     \
-                if (work > YEE_OMP_MIN))                                                      \
+    YEE_OMP(omp for collapse(2) schedule(static) nowait)                                      \
     for (long k = k0; k < k1; ++k)                                                            \
       for (long j = j0; j < j1; ++j) {                                                        \
         const long row = (long)yee_idx(&s->L, 0, j, k);                                       \
+        YEE_OMP(omp simd)                                                                     \
         for (long i = i0; i < i1; ++i) {                                                      \
           const long q = row + i;                                                             \
           const double curl = (Ec[q + sb] - Ec[q]) * (INVB) - (Eb[q + sc] - Eb[q]) * (INVC);  \
@@ -120,13 +117,35 @@ void yee_select_kernels(gm_yee *s) {
   }
 }
 
+/* One parallel region per half step: the three components of a field do not read each other,
+ * so their loops run back to back without barriers (orphaned `omp for nowait` in the kernels);
+ * the region's end is the one barrier. */
+static size_t largest_box(const gm_yee *s, int first) {
+  size_t w = 0;
+  for (int c = first; c < first + 3; ++c) {
+    const size_t v = s->upd[c].cnt[0] * s->upd[c].cnt[1] * s->upd[c].cnt[2];
+    w = v > w ? v : w;
+  }
+  return w;
+}
+
 void yee_update_e(gm_yee *s) {
+  const int nt = s->n_threads;
+  const int big = largest_box(s, 0) > YEE_OMP_MIN;
+  (void)nt;
+  (void)big;
+  YEE_OMP(omp parallel num_threads(nt) if (big))
   for (int p = 0; p < s->n_parts; ++p)
     for (int a = 0; a < 3; ++a)
       if (s->update_e[a]) s->update_e[a](s, p);
 }
 
 void yee_update_h(gm_yee *s) {
+  const int nt = s->n_threads;
+  const int big = largest_box(s, 3) > YEE_OMP_MIN;
+  (void)nt;
+  (void)big;
+  YEE_OMP(omp parallel num_threads(nt) if (big))
   for (int p = 0; p < s->n_parts; ++p)
     for (int a = 0; a < 3; ++a)
       if (s->update_h[a]) s->update_h[a](s, p);
