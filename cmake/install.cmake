@@ -34,10 +34,10 @@ install(FILES ${PROJECT_BINARY_DIR}/geomintConfig.cmake ${PROJECT_BINARY_DIR}/ge
 file(RELATIVE_PATH GM_PC_PREFIX_FROM_PCDIR "${CMAKE_INSTALL_FULL_LIBDIR}/pkgconfig"
      "${CMAKE_INSTALL_PREFIX}")
 string(REGEX REPLACE "/$" "" GM_PC_PREFIX_FROM_PCDIR "${GM_PC_PREFIX_FROM_PCDIR}")
-set(GM_PC_REQUIRES_PRIVATE "")
+set(GM_PC_REQUIRES_PRIVATE " harminv")
 set(GM_PC_LIBS_PRIVATE "")
 if(SUITESPARSE_FOUND)
-  set(GM_PC_REQUIRES_PRIVATE " cholmod umfpack")
+  string(APPEND GM_PC_REQUIRES_PRIVATE " cholmod umfpack")
 else()
   set(GM_PC_LIBS_PRIVATE "-lumfpack -lcholmod -lsuitesparseconfig")
 endif()

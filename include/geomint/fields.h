@@ -1,0 +1,427 @@
+/* geomint fields: field solvers. This header holds the Yee FDTD solver for Maxwell's equations
+ * on Cartesian grids (1-D, 2-D TE, 2-D TM, 3-D), its materials, boundaries, sources, probes,
+ * observers and diagnostics, and a harminv wrapper for resonances of a probe signal.
+ *
+ * Plan/execute (DESIGN §5a): gm_yee_create does all precomputation and allocation (Hodge-star
+ * coefficients, CFL check, CPML profiles and auxiliary arrays); sources, probes and observers
+ * are added after create, each add allocating what it needs; gm_yee_advance never allocates.
+ *
+ * Units: vacuum ε0 = μ0 = c = 1 (as seed 000 §3.2 and MEEP); ε, μ are relative = absolute,
+ * σ is the electric conductivity (J = σE), frequencies are cycles per unit time.
+ *
+ * Fields as discrete forms (seed 000 §3.4.1, notes A9–A10): E (and D = ⋆_ε E) on primal edges at
+ * half steps, H (and B = ⋆_μ H) on primal faces at whole steps. Arrays store point values: the
+ * cochain value divided by the edge length (E) or face area (B), so the discrete d reads as
+ * differences over cell sizes. State after n steps: H at t_n = nΔt and E at t_n − Δt/2.
+ *
+ * Pointer parameters are borrowed unless a comment says copied or owned. Nothing here prints. */
+#ifndef GEOMINT_FIELDS_H
+#define GEOMINT_FIELDS_H
+
+#include <stddef.h>
+
+#include "geomint/core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- grid --------------------------------------------------------------------------------- */
+
+/* Which fields a grid carries. 1-D: Ez, Hy varying along x. 2-D (x, y): TM = Ez, Hx, Hy;
+ * TE = Hz, Ex, Ey. 3-D: all six. Axes a dimension lacks carry no variation. */
+typedef enum gm_yee_dim {
+  GM_YEE_1D = 1,
+  GM_YEE_2D_TE = 2,
+  GM_YEE_2D_TM = 3,
+  GM_YEE_3D = 4
+} gm_yee_dim;
+
+typedef enum gm_yee_component {
+  GM_EX = 0,
+  GM_EY = 1,
+  GM_EZ = 2,
+  GM_HX = 3,
+  GM_HY = 4,
+  GM_HZ = 5
+} gm_yee_component;
+#define GM_YEE_N_COMPONENTS 6
+
+/* "Ex", "Ey", ... ; NULL for an invalid value. */
+const char *gm_yee_component_name(gm_yee_component c);
+/* Look a component up by name ("Ex" .. "Hz", case-insensitive). GM_ENOTFOUND when none. */
+gm_status gm_yee_component_find(const char *name, gm_yee_component *out);
+
+typedef struct gm_yee_grid {
+  gm_yee_dim dim;
+  size_t n[3];      /* cells per axis (>= 1 on the axes the dimension has; others ignored) */
+  double h[3];      /* cell size per axis (> 0 on the axes it has; others ignored: 1) */
+  double origin[3]; /* coordinates of vertex (0,0,0) */
+} gm_yee_grid;
+
+/* Number of axes the dimension has (1, 2 or 3). */
+size_t gm_yee_dim_axes(gm_yee_dim dim);
+/* Non-zero when the dimension carries component c. */
+int gm_yee_dim_has(gm_yee_dim dim, gm_yee_component c);
+
+/* ---- materials: ε, μ, σ per cell, painted from shapes ------------------------------------- */
+
+typedef struct gm_medium {
+  double epsilon; /* relative permittivity, > 0 */
+  double mu;      /* relative permeability, > 0 */
+  double sigma;   /* electric conductivity, >= 0 */
+} gm_medium;
+
+/* Vacuum {1, 1, 0}. */
+gm_medium gm_medium_vacuum(void);
+
+/* One medium per cell (x fastest: cell (i,j,k) at i + n0*(j + n1*k); absent axes count 1).
+ * Shapes paint the cells whose centre lies inside (closed shape); later paints overwrite
+ * earlier ones. A medium with ε <= 0, μ <= 0, σ < 0 or any NaN/inf is GM_EINVAL with a
+ * message (gm_yee_materials_errmsg); the materials are then unchanged. */
+typedef struct gm_yee_materials gm_yee_materials;
+
+/* Vacuum everywhere on the grid (copied). Errors as gm_yee_create's grid checks. */
+gm_status gm_yee_materials_create(const gm_yee_grid *grid, gm_yee_materials **out,
+                                  gm_error *err);
+void gm_yee_materials_free(gm_yee_materials *materials);
+gm_status gm_yee_materials_fill(gm_yee_materials *m, const gm_medium *medium);
+/* Axis-aligned box [lo, hi] (coordinates; lo <= hi on each axis the grid has). */
+gm_status gm_yee_paint_box(gm_yee_materials *m, const double lo[3], const double hi[3],
+                           const gm_medium *medium);
+gm_status gm_yee_paint_sphere(gm_yee_materials *m, const double center[3], double radius,
+                              const gm_medium *medium);
+/* Cylinder of the given radius and height (length along its axis), centred at center, axis
+ * any non-zero vector (as MEEP's Cylinder). In 2-D an axis along z paints a disk. */
+gm_status gm_yee_paint_cylinder(gm_yee_materials *m, const double center[3],
+                                const double axis[3], double radius, double height,
+                                const gm_medium *medium);
+/* Per-cell arrays (one value per cell, layout above; copied). A NULL array leaves that
+ * property unchanged. Every value is checked first. */
+gm_status gm_yee_paint_cells(gm_yee_materials *m, const double *epsilon, const double *mu,
+                             const double *sigma);
+/* Per-cell arrays (borrowed, valid while m lives), and the cell count. */
+size_t gm_yee_materials_n_cells(const gm_yee_materials *m);
+const double *gm_yee_materials_epsilon(const gm_yee_materials *m);
+const double *gm_yee_materials_mu(const gm_yee_materials *m);
+const double *gm_yee_materials_sigma(const gm_yee_materials *m);
+const char *gm_yee_materials_errmsg(const gm_yee_materials *m);
+
+/* ---- boundaries --------------------------------------------------------------------------- */
+
+typedef enum gm_yee_boundary_kind {
+  GM_BOUNDARY_PEC = 0,      /* tangential E = 0 (electric wall) */
+  GM_BOUNDARY_PMC = 1,      /* tangential H = 0 (magnetic wall; image of H, half dual cells) */
+  GM_BOUNDARY_PERIODIC = 2, /* both faces of the axis; f(x + L) = exp(i k L) f(x) (Bloch) */
+  GM_BOUNDARY_CPML = 3      /* convolutional PML (Roden & Gedney 2000) backed by PEC */
+} gm_yee_boundary_kind;
+
+/* CPML parameters (Taflove & Hagness 3rd ed. §7.9–7.11). The PML occupies the outer
+ * `thickness` cells of the grid on that face (they are part of n). Profiles, with ρ the depth
+ * into the layer over its thickness (0 at the interface, 1 at the PEC backing):
+ *   σ(ρ) = σ_max ρ^m,  κ(ρ) = 1 + (κ_max − 1) ρ^m,  α(ρ) = α_max (1 − ρ)^m_α. */
+typedef struct gm_cpml {
+  size_t thickness;     /* cells (>= 1) */
+  double grading;       /* m (default 3) */
+  double sigma_max;     /* the stretching rate σ/ε at the PEC backing (1/time); <= 0:
+                           σ_opt = 0.8 (m + 1) / (h sqrt(εμ)) of the adjacent medium
+                           (Taflove & Hagness eq. 7.67 in units ε0 = μ0 = 1), scaled by
+                           sigma_factor */
+  double sigma_factor;  /* multiplies σ_opt when sigma_max <= 0 (default 1) */
+  double kappa_max;     /* >= 1 (default 1) */
+  double alpha_max;     /* CFS α >= 0 (default 0.05 in units where c = 1 per unit length) */
+  double alpha_grading; /* m_α (default 1) */
+} gm_cpml;
+
+/* Defaults: thickness 10, m 3, σ_opt, factor 1, κ_max 1, α_max 0.05, m_α 1. */
+gm_cpml gm_cpml_defaults(void);
+
+typedef struct gm_yee_boundary {
+  gm_yee_boundary_kind kind;
+  gm_cpml pml; /* read when kind == GM_BOUNDARY_CPML */
+} gm_yee_boundary;
+
+/* "pec", "pmc", "periodic", "cpml"; NULL for an invalid value. */
+const char *gm_yee_boundary_kind_name(gm_yee_boundary_kind kind);
+/* By name (as above, case-insensitive). GM_ENOTFOUND when none. */
+gm_status gm_yee_boundary_kind_find(const char *name, gm_yee_boundary_kind *out);
+
+/* Faces in the order −x, +x, −y, +y, −z, +z; faces of absent axes are ignored. */
+enum { GM_FACE_XLO = 0, GM_FACE_XHI, GM_FACE_YLO, GM_FACE_YHI, GM_FACE_ZLO, GM_FACE_ZHI };
+
+/* ---- options and creation ----------------------------------------------------------------- */
+
+typedef struct gm_yee_options {
+  double dt;                   /* time step; <= 0: courant × the Courant limit */
+  double courant;              /* fraction of the limit used when dt <= 0 (default 0.99) */
+  gm_yee_boundary boundary[6]; /* default PEC on every face */
+  double bloch_k[3];           /* Bloch wave vector on periodic axes (default 0). Non-zero on
+                                  any axis: complex fields (a real and an imaginary array per
+                                  component, coupled only through the periodic faces). */
+  int n_threads;               /* OpenMP threads of the updates; 0: OpenMP's default */
+} gm_yee_options;
+
+gm_yee_options gm_yee_defaults(void);
+
+/* The Courant limit dt_max = 1 / (c_max sqrt(Σ_axes 1/h²)) with c_max = 1/sqrt(min εμ) over
+ * the cells (vacuum when materials is NULL): Yee is stable for dt <= dt_max (Taflove & Hagness
+ * eq. 4.52 with the fastest medium). */
+gm_status gm_yee_courant_limit(const gm_yee_grid *grid, const gm_yee_materials *materials,
+                               double *dt_max, gm_error *err);
+
+typedef struct gm_yee gm_yee;
+
+/* A solver on grid (copied) with materials (copied into the edge and face Hodge-star
+ * coefficients; NULL: vacuum) and options (copied; NULL: defaults). Fields start at zero.
+ * Errors (GM_EINVAL with a message in err): zero cells, non-positive or non-finite cell sizes,
+ * materials of another grid, dt above the Courant limit (the message gives the limit), a
+ * periodic axis with the other face not periodic, a Bloch k on a non-periodic axis, a PML
+ * thicker than the grid (both faces' thicknesses must leave at least one cell), bad CPML
+ * parameters; GM_ENOMEM. */
+gm_status gm_yee_create(const gm_yee_grid *grid, const gm_yee_materials *materials,
+                        const gm_yee_options *options, gm_yee **out, gm_error *err);
+void gm_yee_free(gm_yee *solver);
+/* What failed and why, for the last error of this solver ("" when none). */
+const char *gm_yee_errmsg(const gm_yee *solver);
+
+/* ---- sources ------------------------------------------------------------------------------ */
+
+typedef enum gm_waveform_kind {
+  GM_WAVE_GAUSSIAN = 0,  /* exp(−τ²/2w²) cos(2πfτ + φ), τ = t − t0 (f = 0: plain Gaussian) */
+  GM_WAVE_DGAUSSIAN = 1, /* derivative of the plain Gaussian, normalised: −(τ/w) exp(½ − τ²/2w²)
+                            (peak value 1) */
+  GM_WAVE_RICKER = 2,    /* (1 − 2π²f²τ²) exp(−π²f²τ²), f the peak frequency */
+  GM_WAVE_CW = 3,        /* s(t) sin(2πf t + φ) with s the C² ramp 10x³ − 15x⁴ + 6x⁵,
+                            x = t/w clipped to [0, 1] (w = 0: switched on at t = 0) */
+  GM_WAVE_CUSTOM = 4     /* fn(ctx, t) */
+} gm_waveform_kind;
+
+typedef struct gm_waveform {
+  gm_waveform_kind kind;
+  double amplitude; /* multiplies the shape above */
+  double frequency; /* f */
+  double width;     /* w: Gaussian standard deviation in time / CW turn-on time */
+  double delay;     /* t0 */
+  double phase;     /* φ (Gaussian carrier, CW) in radians */
+  double (*fn)(void *ctx, double t); /* GM_WAVE_CUSTOM; called once per step, not per cell */
+  void *ctx;
+} gm_waveform;
+
+/* "gaussian", "dgaussian", "ricker", "cw", "custom"; NULL for an invalid value. */
+const char *gm_waveform_kind_name(gm_waveform_kind kind);
+/* By name (as above, case-insensitive). GM_ENOTFOUND when none. */
+gm_status gm_waveform_kind_find(const char *name, gm_waveform_kind *out);
+/* The value of the waveform at time t (GM_WAVE_CUSTOM calls fn). */
+double gm_waveform_value(const gm_waveform *w, double t);
+/* GM_EINVAL with a message for a waveform that cannot be evaluated (non-finite parameters,
+ * w <= 0 for the Gaussians, f <= 0 for Ricker and CW, no fn for CUSTOM). */
+gm_status gm_waveform_check(const gm_waveform *w, gm_error *err);
+
+typedef enum gm_source_mode {
+  GM_SOURCE_SOFT = 0, /* a current: J (E components) or M (H components) = waveform on that
+                         edge/face, entering dG = 𝒥 (D' = curl H − J) or dF (B' = −curl E − M) */
+  GM_SOURCE_HARD = 1  /* the field value is set to the waveform after each update */
+} gm_source_mode;
+
+/* A point dipole at x (coordinates), snapped to the nearest location of `component` inside
+ * the grid. Soft E sources use J at t_n; soft H sources M at t_n + Δt/2; hard sources the
+ * time of the field they set. */
+typedef struct gm_point_source {
+  gm_yee_component component;
+  double x[3];
+  gm_source_mode mode;
+  gm_waveform wave;
+} gm_point_source;
+
+/* Add a source (copied). Errors: a component the dimension lacks, a position outside the grid
+ * (more than half a cell beyond its last location), a bad waveform. id (may be NULL) receives
+ * its index. */
+gm_status gm_yee_add_point_source(gm_yee *solver, const gm_point_source *source, size_t *id);
+
+/* A current density J = weight_e · waveform(t_n) on a set of edges of one E component (edge
+ * (i,j,k) = array index (i,j,k) of that component, see gm_yee_layout). The charge it moves is
+ * tracked: ρ^{n+½} = ρ^{n−½} − Δt div J^n on the vertices it touches, so that Gauss's law
+ * div D − ρ is conserved exactly (gm_yee_gauss). */
+typedef struct gm_current {
+  gm_yee_component component; /* GM_EX, GM_EY or GM_EZ */
+  size_t n_edges;
+  const size_t *edges;        /* 3 indices per edge (copied) */
+  const double *weights;      /* per edge (copied); NULL: all 1 */
+  gm_waveform wave;
+} gm_current;
+
+/* Errors: not an E component or one the dimension lacks, an edge outside the grid or on a PEC
+ * face, a bad waveform. */
+gm_status gm_yee_add_current(gm_yee *solver, const gm_current *current, size_t *id);
+
+/* Total-field/scattered-field plane wave along a grid axis (Taflove & Hagness ch. 5). The
+ * incident field comes from a 1-D Yee grid with the same h and Δt along that axis in the medium
+ * of the box's first cell, so the TF/SF faces cancel to round-off outside the box. The total
+ * field region is the closed box of vertices [lo, hi]; on absent axes lo = hi = 0.
+ * The incident E (component `polarization`, perpendicular to the axis) is
+ * amplitude · g(t) at the aux grid's driven node, `margin` cells before the entry face, and
+ * arrives there delayed by its (discrete) travel time. */
+typedef struct gm_plane_wave {
+  int axis;                       /* 0, 1, 2: direction of travel */
+  int sign;                       /* +1: along +axis, −1: along −axis */
+  gm_yee_component polarization;  /* GM_EX .. GM_EZ, not along axis */
+  size_t lo[3], hi[3];            /* TF box (vertex indices), lo < hi on present axes, and at
+                                     least one cell from the grid's faces */
+  gm_waveform wave;
+} gm_plane_wave;
+
+gm_status gm_yee_add_plane_wave(gm_yee *solver, const gm_plane_wave *wave, size_t *id);
+
+/* ---- initial fields ----------------------------------------------------------------------- */
+
+/* Set component c (real part: part 0; imaginary: part 1, complex fields only) from
+ * values[layout.size] (copied, layout of gm_yee_layout); entries outside the component's
+ * locations and tangential E on PEC faces are set to 0, ghosts refreshed. NaN/inf is
+ * GM_EDOMAIN. Meant for initial data (step 0) but allowed at any step. */
+gm_status gm_yee_set_field(gm_yee *solver, gm_yee_component c, int part, const double *values);
+/* Same, values from f(ctx, x) at each location x of the component. */
+gm_status gm_yee_set_field_fn(gm_yee *solver, gm_yee_component c, int part,
+                              double (*f)(void *ctx, const double x[3]), void *ctx);
+
+/* ---- running ------------------------------------------------------------------------------ */
+
+/* An observer sees the solver (read-only) at a consistent state: H at gm_yee_time_h, E at
+ * gm_yee_time_e. Return non-zero to stop the run with GM_ECALLBACK. */
+typedef int (*gm_yee_observer_fn)(void *ctx, const gm_yee *solver);
+
+/* Call fn whenever the step counter is a multiple of every (>= 1), step 0 included (at the
+ * start of the first advance); how a run is split into advances does not change the calls. */
+gm_status gm_yee_add_observer(gm_yee *solver, size_t every, gm_yee_observer_fn fn, void *ctx);
+
+/* Advance n_steps steps. One step (seed 000 §3.4.1):
+ *   E^{n+½} = E^{n−½} + Δt ⋆_ε⁻¹ (d̃ H^n − J^n)    (dG = 𝒥 on dual cells: Ampère)
+ *   H^{n+1} = H^n − Δt ⋆_μ⁻¹ (d E^{n+½} + M)        (dF = 0 on primal faces: Faraday)
+ * with σ loss (semi-implicit average) and CPML terms. Fails before stepping when a probe has
+ * no room for n_steps samples. GM_EDOMAIN if the fields become non-finite (checked at
+ * observer calls and at the end). */
+gm_status gm_yee_advance(gm_yee *solver, size_t n_steps);
+/* Advance to the last step with t_n <= t. */
+gm_status gm_yee_advance_to(gm_yee *solver, double t);
+
+size_t gm_yee_step(const gm_yee *solver);
+double gm_yee_dt(const gm_yee *solver);
+double gm_yee_time_h(const gm_yee *solver); /* n Δt */
+double gm_yee_time_e(const gm_yee *solver); /* (n − ½) Δt */
+
+/* ---- field arrays and layout (for writers) ------------------------------------------------ */
+
+/* Every component array has the same layout: extent[a] = n[a] + 2 on present axes (one ghost
+ * layer each side: index −1 and n), 1 on absent ones. Component c at index (i,j,k), i in
+ * [−1, n0] on a present axis, is stored at
+ *   (i + offset[0]) * stride[0] + (j + offset[1]) * stride[1] + (k + offset[2]) * stride[2]
+ * (x fastest; offset 1 on present axes, 0 on absent ones) and sits at
+ *   origin + h * ((i, j, k) + shift_c), shift_c from gm_yee_component_shift.
+ * Its own locations are index ranges [0, count_c[a]) (gm_yee_component_count); everything
+ * else (ghosts, unused entries) is not part of the field. */
+typedef struct gm_yee_layout {
+  gm_yee_dim dim;
+  size_t n[3];      /* cells per axis (1 on absent axes) */
+  double h[3];      /* cell sizes (1 on absent axes) */
+  double origin[3];
+  size_t extent[3];
+  size_t offset[3];
+  size_t stride[3];
+  size_t size;      /* entries per component array */
+  int complex_fields; /* 1: a second (imaginary) array per component */
+} gm_yee_layout;
+
+void gm_yee_get_layout(const gm_yee *solver, gm_yee_layout *layout);
+/* Position of component c in cell units: ½ along the axis of an E component, ½ along the two
+ * other axes of an H component, 0 elsewhere (0 on absent axes). */
+void gm_yee_component_shift(gm_yee_dim dim, gm_yee_component c, double shift[3]);
+/* Number of locations of c per axis: n on staggered axes, n + 1 on the others (1 on absent). */
+void gm_yee_component_count(const gm_yee_layout *layout, gm_yee_component c, size_t count[3]);
+/* Array index of (i,j,k) (each may be −1 .. n). */
+size_t gm_yee_index(const gm_yee_layout *layout, long i, long j, long k);
+/* The array of component c (part 0 real, 1 imaginary), borrowed, valid until the next advance
+ * or set; NULL when the dimension lacks c or part 1 is asked of real fields. */
+const double *gm_yee_field(const gm_yee *solver, gm_yee_component c, int part);
+/* Value of component c at its location nearest to x (part 0/1). NaN when x is outside or the
+ * component absent. */
+double gm_yee_field_at(const gm_yee *solver, gm_yee_component c, int part, const double x[3]);
+
+/* Bytes held by the solver and the number of grid-sized arrays among them. */
+size_t gm_yee_memory(const gm_yee *solver, size_t *n_arrays);
+
+/* ---- probes ------------------------------------------------------------------------------- */
+
+/* A probe records component c at the location nearest to x (inside the grid) after every step,
+ * with the time of that component, into room for `capacity` samples (allocated here). */
+gm_status gm_yee_add_probe(gm_yee *solver, gm_yee_component c, const double x[3],
+                           size_t capacity, size_t *id);
+/* Recorded samples (borrowed, valid until the next advance/clear): n, times, real parts and
+ * imaginary parts (NULL for real fields). */
+gm_status gm_yee_probe_samples(const gm_yee *solver, size_t id, size_t *n, const double **t,
+                               const double **re, const double **im);
+gm_status gm_yee_probe_clear(gm_yee *solver, size_t id);
+size_t gm_yee_probe_count(const gm_yee *solver);
+
+/* ---- diagnostics -------------------------------------------------------------------------- */
+
+typedef struct gm_yee_energy {
+  double electric;  /* ½ Σ_edges V ε |E^{n−½}|² */
+  double magnetic;  /* ½ Σ_faces V μ |H^n|² */
+  double plain;     /* electric + magnetic (fields half a step apart; bounded, not conserved) */
+  double leapfrog;  /* ½ [E^{n−½}·⋆_ε E^{n−½} + H^{n−1}·⋆_μ H^n], the quadratic form the
+                       lossless leapfrog conserves exactly (H^{n−1} = H^n + Δt ⋆_μ⁻¹ d E^{n−½}
+                       is reconstructed, not stored) */
+} gm_yee_energy;
+
+/* Energies summed over the grid (both parts for complex fields), PML cells included. V is the
+ * dual volume of the edge/face (half cells at PMC faces). */
+gm_status gm_yee_get_energy(const gm_yee *solver, gm_yee_energy *energy);
+
+/* Discrete div B per primal cell (seed 000 eq. 3.10; B = ⋆_μ H as a 2-form over the cell's
+ * faces divided by its volume). out (may be NULL): one value per cell at array index (i,j,k)
+ * of the layout; max_abs (may be NULL): the largest |div B| (real part and imaginary part).
+ * In CPML layers the stretched B is not the stored one; cells there are reported as 0. Soft H
+ * sources are magnetic currents: they change div B by the magnetic charge they move. */
+gm_status gm_yee_div_b(const gm_yee *solver, double *out, double *max_abs);
+/* Gauss residual div D − ρ per primal vertex (seed 000 eq. 3.11, D = ⋆_ε E on dual faces, ρ
+ * from the currents added; soft E point sources are currents too). Vertices on PEC and CPML
+ * faces are reported as 0 (the wall holds a surface charge the scheme does not track), as are
+ * vertices in CPML layers. Constant in time for σ = 0 without hard E sources (a conductor's
+ * current σE moves charge that is not tracked; a hard source overrides Ampère's law). With a
+ * Bloch k the charge of a current across the periodic face is booked without the phase. */
+gm_status gm_yee_gauss(const gm_yee *solver, double *out, double *max_abs);
+/* Total charge Σ ρ V moved by the currents so far. */
+double gm_yee_charge(const gm_yee *solver);
+
+/* Poynting flux ∫ (E × H)·n dA through the primal vertex plane `index` (1..n−1) normal to
+ * axis, with E^{n−½} and H at t_{n−½} (the mean of H^n and the reconstructed H^{n−1}) averaged
+ * over the two faces beside the plane; E_b and H_c (and E_c, H_b) share their positions in the
+ * plane, so nothing else is interpolated. Positive along +axis. Its time sum equals the change
+ * of the leapfrog energy on either side (the discrete Poynting theorem) away from sources and
+ * CPML. Complex fields: the sum of the real parts' and the imaginary parts' fluxes. */
+gm_status gm_yee_poynting_flux(const gm_yee *solver, int axis, size_t index, double *flux);
+
+/* ---- harminv: resonances of a signal (Mandelshtam & Taylor filter diagonalization) --------- */
+
+typedef struct gm_harminv_mode {
+  double frequency; /* cycles per unit time */
+  double decay;     /* decay rate (1/time): the signal ~ exp(−decay t) */
+  double q;         /* quality factor π f / decay */
+  double amplitude; /* |amplitude| */
+  double phase;     /* arg amplitude (radians) */
+  double error;     /* harminv's relative frequency error estimate */
+} gm_harminv_mode;
+
+/* Modes of the signal re (+ i im when im is non-NULL) sampled every dt, with frequencies in
+ * [f_min, f_max] (harminv's band; 0 <= f_min < f_max <= 1/(2dt)), using n_basis basis
+ * functions (0: the harminv program's default, 1.1 per Fourier bin of the band, 2..300). At most max_modes are written, in
+ * ascending frequency; n_modes receives how many were written. Every mode harminv returns in
+ * the band is kept (filter on error/Q yourself). Real signals give each mode once, at f > 0.
+ * Errors: n < 8, non-finite samples or dt, a bad band. */
+gm_status gm_harminv(size_t n, const double *re, const double *im, double dt, double f_min,
+                     double f_max, size_t n_basis, size_t max_modes, gm_harminv_mode *modes,
+                     size_t *n_modes, gm_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
