@@ -50,6 +50,8 @@ static gm_status init(gm_integrator *it) {
       return gm_fail(it->errmsg, sizeof it->errmsg, st, "cannot build the tableau of '%s'",
                      it->method->name);
   }
+  if (w->scheme == GM_LIE_GALERKIN || w->scheme == GM_LIE_DEP)
+    return gm_lie_galerkin_init(it, w->scheme == GM_LIE_DEP);
   if (w->scheme == 0)
     return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL, "'%s' is not a Lie group row",
                    it->method->name);
@@ -58,7 +60,10 @@ static gm_status init(gm_integrator *it) {
 
 static void release(gm_integrator *it) {
   gm_lie_work *w = it->work;
-  if (w != NULL) gm_tableau_free(w->tableau);
+  if (w != NULL) {
+    gm_tableau_free(w->tableau);
+    gm_lie_galerkin_release(w);
+  }
   free(w);
   it->work = NULL;
 }
@@ -213,6 +218,10 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y_old
       break;
     case GM_LIE_SPLITTING:
       st = gm_rigid_splitting_step(it, t, h, y_old, out, e);
+      break;
+    case GM_LIE_GALERKIN:
+    case GM_LIE_DEP:
+      st = gm_lie_galerkin_step(it, t, h, y_old, out, e);
       break;
     default:
       st = GM_EINVAL;

@@ -19,6 +19,30 @@ static const double cg3_a[] = {0, 0, 0, 0.75, 0, 0, 119.0 / 216, 17.0 / 108, 0};
 static const double cg3_b[] = {13.0 / 51, -2.0 / 3, 24.0 / 17};
 static const double cg3_c[] = {0, 0.75, 17.0 / 24};
 
+/* Galerkin Lie group variational integrators (seed 001 §5.3): degree-s curves in the
+ * exponential chart at R_k, s Gauss points: order 2s (measured in tests/convergence). The
+ * stationarity conditions are derived in lie_galerkin.c and docs/lie-groups.md. */
+#define GALERKIN(s_, order_, name_)                                                           \
+  {.name = name_, .family = GM_FAMILY_LIE_GROUP, .order = (order_), .n_stages = (s_),         \
+   .flags = GALERKIN_FLAGS_##s_, .accepts = RIGID,                                           \
+   .description = "Galerkin Lie group variational integrator, degree " #s_                    \
+                  " in the exponential chart, " #s_ " Gauss points",                          \
+   .reference = "Leok, thesis (2004), Sect. 5.3 (conditions re-derived, see docs/lie-groups.md)"}
+/* The discrete Euler–Poincaré equations of the same discrete Lagrangian for free bodies
+ * (seed 001 §5.4), reconstruction R_{k+1} = R_k f_k. */
+#define DEP(s_, order_, name_)                                                                \
+  {.name = name_, .family = GM_FAMILY_LIE_GROUP, .order = (order_), .n_stages = (s_),         \
+   .flags = GALERKIN_FLAGS_##s_, .accepts = RIGID,                                           \
+   .description = "discrete Euler-Poincare (free bodies), degree " #s_ ", " #s_               \
+                  " Gauss points; R_{k+1} = R_k f_k",                                         \
+   .reference = "Leok, thesis (2004), Sect. 5.4 (f = g_k^-1 g_k+1, seeds/notes/001 Sect. 4)"}
+/* s = 1 follows a one-parameter subgroup, the same curve seen from either end: symmetric.
+ * For s >= 2 the chart at R_k and at R_{k+1} give different curves: not symmetric (measured,
+ * tests/invariants/test_reversible.c). */
+#define GALERKIN_FLAGS_1 (GM_SYMPLECTIC | GM_SYMMETRIC | GM_IMPLICIT)
+#define GALERKIN_FLAGS_2 (GM_SYMPLECTIC | GM_IMPLICIT)
+#define GALERKIN_FLAGS_3 (GM_SYMPLECTIC | GM_IMPLICIT)
+
 const gm_method gm_lie_group_methods[] = {
     {.name = "lgvi", .family = GM_FAMILY_LIE_GROUP, .order = 2, .n_stages = 1,
      .flags = GM_SYMPLECTIC | GM_SYMMETRIC | GM_IMPLICIT, .accepts = RIGID,
@@ -42,11 +66,19 @@ const gm_method gm_lie_group_methods[] = {
      .reference = "McLachlan, Phys. Rev. Lett. 71 (1993) 3043; Touma & Wisdom, Astron. J. 107 "
                   "(1994) 1189; Dullweber, Leimkuhler & McLachlan, J. Chem. Phys. 107 (1997) "
                   "5840"},
+    GALERKIN(1, 2, "lgvi-galerkin-1"),
+    GALERKIN(2, 4, "lgvi-galerkin-2"),
+    GALERKIN(3, 6, "lgvi-galerkin-3"),
+    DEP(1, 2, "dep-1"),
+    DEP(2, 4, "dep-2"),
+    DEP(3, 6, "dep-3"),
 };
 const size_t gm_n_lie_group_methods = sizeof gm_lie_group_methods / sizeof gm_lie_group_methods[0];
 
-static const gm_lie_scheme schemes[] = {GM_LIE_LGVI, GM_LIE_RKMK, GM_LIE_CROUCH_GROSSMAN,
-                                        GM_LIE_SPLITTING};
+static const gm_lie_scheme schemes[] = {
+    GM_LIE_LGVI,     GM_LIE_RKMK,     GM_LIE_CROUCH_GROSSMAN, GM_LIE_SPLITTING,
+    GM_LIE_GALERKIN, GM_LIE_GALERKIN, GM_LIE_GALERKIN,        GM_LIE_DEP,
+    GM_LIE_DEP,      GM_LIE_DEP};
 _Static_assert(sizeof schemes / sizeof schemes[0] ==
                    sizeof gm_lie_group_methods / sizeof gm_lie_group_methods[0],
                "one scheme per row");

@@ -24,8 +24,10 @@ static void check_problem(const char *name, double h) {
     double e = reversal_error(m, &tm, h);
     if (m->flags & GM_SYMMETRIC)
       cr_expect_leq(e, 1e-13, "%s on %s: returns with error %.2e", m->name, name, e);
-    else
-      cr_expect_gt(e, 1e-8, "%s on %s is not symmetric, yet returns to %.2e", m->name, name, e);
+    else /* a non-symmetric method of order r ≥ 6 returns to O(h^{r+1}): 1e-10 for
+            lgvi-galerkin-3, still far above the 1e-13 of the symmetric rows */
+      cr_expect_gt(e, m->order >= 6 ? 1e-12 : 1e-8,
+                   "%s on %s is not symmetric, yet returns to %.2e", m->name, name, e);
   }
   gm_model_free(tm.model);
 }

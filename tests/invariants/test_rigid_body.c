@@ -48,6 +48,14 @@ static tracker run_tracked(const gm_method *m, const test_model *tm, size_t n, d
  * compensated summation of the update R + R E the orthogonality defect stays at 1e-15; without
  * it the rounding of R + R E random-walks to ~1e-13 (docs/lie-groups.md), which is asserted
  * at 1e-12 on the cheapest row only, to keep the suite's time small. */
+/* The rows whose step solves at most a 3×3 system (explicit ones and lgvi) take 10⁶ steps here;
+ * the Galerkin and DEP rows (a 3s-dimensional Newton solve with a difference Jacobian, 10–20 µs
+ * a step) take 2·10⁴ to keep the suite's time small; their 10⁶-step numbers are measured once
+ * in docs/lie-groups.md. */
+static int cheap_row(const gm_method *m) {
+  return (m->flags & GM_EXPLICIT) || strcmp(m->name, "lgvi") == 0;
+}
+
 Test(rigid_body, million_steps_stay_on_the_group, .timeout = 300) {
   test_model tm = test_model_make("rigid-body");
   size_t n_rows = 0;
@@ -56,12 +64,13 @@ Test(rigid_body, million_steps_stay_on_the_group, .timeout = 300) {
     if (!test_accepts(m, tm.problem)) continue;
     ++n_rows;
     double y[12];
-    tracker tr = run_tracked(m, &tm, 1000000, 0.01, 1, 1000, y);
+    const size_t n = cheap_row(m) ? 1000000 : 20000;
+    tracker tr = run_tracked(m, &tm, n, 0.01, 1, cheap_row(m) ? 1000 : 100, y);
     double defect = gm_problem_state_defect(tm.problem, y);
-    cr_log_info("%s: |R^T R - I| = %.2e, energy %.2e / %.2e (halves), casimir %.2e, L %.2e %.2e "
-                "%.2e", m->name, defect, tr.energy[0], tr.energy[1], tr.drift[0], tr.drift[1],
+    cr_log_info("%s, %zu steps: |R^T R - I| = %.2e, energy %.2e / %.2e (halves), casimir %.2e, L %.2e %.2e "
+                "%.2e", m->name, n, defect, tr.energy[0], tr.energy[1], tr.drift[0], tr.drift[1],
                 tr.drift[2], tr.drift[3]);
-    cr_expect_leq(defect, 1e-13, "%s: |R^T R - I| = %.2e after 1e6 steps", m->name, defect);
+    cr_expect_leq(defect, 1e-13, "%s: |R^T R - I| = %.2e after %zu steps", m->name, defect, n);
     if (m->flags & GM_SYMPLECTIC) {
       /* Casimir and spatial momentum: exact rotations of Π; round-off only */
       for (size_t k = 0; k < 4; ++k)
@@ -73,7 +82,7 @@ Test(rigid_body, million_steps_stay_on_the_group, .timeout = 300) {
                     tr.energy[0], tr.energy[1]);
     }
   }
-  cr_expect_eq(n_rows, 4);
+  cr_expect_geq(n_rows, 4);
   /* without compensated summation, on the cheapest row */
   double y[12];
   run_tracked(gm_method_find("rigid-splitting"), &tm, 1000000, 0.01, 0, 1000000, y);
@@ -92,7 +101,7 @@ Test(rigid_body, rkmk_and_crouch_grossman_drift) {
     const gm_method *m = gm_method_at(i);
     if (!test_accepts(m, tm.problem)) continue;
     double y[12];
-    tracker tr = run_tracked(m, &tm, 100000, 0.2, 0, 100, y);
+    tracker tr = run_tracked(m, &tm, cheap_row(m) ? 100000 : 10000, 0.2, 0, 100, y);
     cr_log_info("%s, h = 0.2: energy %.2e / %.2e, casimir %.2e", m->name, tr.energy[0],
                 tr.energy[1], tr.drift[0]);
     if (m->flags & GM_SYMPLECTIC)
@@ -108,40 +117,23 @@ Test(rigid_body, rkmk_and_crouch_grossman_drift) {
 }
 
 /* The intermediate-axis flip: Π₂ changes sign every half period T of Π(t), T = 4K(k)/λ in
- * closed form (gm_free_rigid_body_period). Zero crossings of Π₂ are located by cubic Hermite
- * interpolation (Π₂' = Π₃Ω₁ − Π₁Ω₃), whose O(h⁴) error is below the methods' own for the steps
- * used. The period measured over three periods converges at the method's order. */
-static double measured_period(const gm_method *m, const test_model *tm, double h, double t_end) {
-  const double *j = tm->problem->inertia;
+ * closed form (gm_free_rigid_body_period). Integrating exactly k closed-form periods with
+ * h = T/N, the numerical Π misses Π(0) by about −δ Π'(0), δ the accumulated period error
+ * (the lag of the numerical flips): δ = −(Π_h(kT) − Π(0))·Π'(0)/|Π'(0)|², to O(δ²), with no
+ * interpolation between steps. The period error δ/k converges at the method's order. */
+static double period_error(const gm_method *m, const test_model *tm, double period, size_t k,
+                           size_t n_per_period) {
+  const double *j = tm->problem->inertia, *pi = tm->y0 + 9;
+  const double omega[3] = {pi[0] / j[0], pi[1] / j[4], pi[2] / j[8]};
+  double dpi[3];
+  gm_vec3_cross(pi, omega, dpi); /* Π' = Π × Ω */
   gm_integrator *it = test_integrator(m, tm->problem, tm->t0, tm->y0);
-  double y0[12], first = NAN, last = NAN;
-  size_t n_cross = 0;
-  memcpy(y0, tm->y0, sizeof y0);
-  for (double t = 0; t < t_end; t += h) {
-    cr_assert_eq(gm_integrator_step(it, h), GM_OK);
-    const double *y1 = gm_integrator_state(it);
-    if (y0[10] < 0 && y1[10] >= 0) { /* upward crossing of Π₂ */
-      double d0 = y0[11] * y0[9] / j[0] - y0[9] * y0[11] / j[8];
-      double d1 = y1[11] * y1[9] / j[0] - y1[9] * y1[11] / j[8];
-      /* Hermite cubic on [0, 1] in s = (t − t_k)/h; Newton from the linear guess */
-      double s = y0[10] / (y0[10] - y1[10]);
-      for (int k = 0; k < 20; ++k) {
-        double s2 = s * s, s3 = s2 * s;
-        double p = (2 * s3 - 3 * s2 + 1) * y0[10] + (s3 - 2 * s2 + s) * h * d0 +
-                   (-2 * s3 + 3 * s2) * y1[10] + (s3 - s2) * h * d1;
-        double dp = (6 * s2 - 6 * s) * y0[10] + (3 * s2 - 4 * s + 1) * h * d0 +
-                    (-6 * s2 + 6 * s) * y1[10] + (3 * s2 - 2 * s) * h * d1;
-        s -= p / dp;
-      }
-      double tc = gm_integrator_time(it) - h + s * h;
-      if (n_cross == 0) first = tc;
-      last = tc;
-      ++n_cross;
-    }
-    memcpy(y0, y1, sizeof y0);
-  }
+  cr_assert_eq(gm_integrator_run(it, k * n_per_period, period / (double)n_per_period), GM_OK);
+  const double *y = gm_integrator_state(it);
+  double miss = 0.0;
+  for (int a = 0; a < 3; ++a) miss += (y[9 + a] - pi[a]) * dpi[a];
   gm_integrator_free(it);
-  return n_cross >= 2 ? (last - first) / (double)(n_cross - 1) : NAN;
+  return -miss / gm_vec3_dot(dpi, dpi) / (double)k;
 }
 
 Test(rigid_body, dzhanibekov_flip_period) {
@@ -153,15 +145,16 @@ Test(rigid_body, dzhanibekov_flip_period) {
   for (size_t i = 0; i < gm_method_count(); ++i) {
     const gm_method *m = gm_method_at(i);
     if (!test_accepts(m, tm.problem)) continue;
-    const double h = m->order >= 3 ? 0.1 : 0.02;
-    double e1 = fabs(measured_period(m, &tm, h, 3.6 * period) - period);
-    double e2 = fabs(measured_period(m, &tm, h / 2, 3.6 * period) - period);
-    double rate = log2(e1 / e2);
-    cr_log_info("%s: period %.10f (closed form %.10f), error %.2e at h = %g, %.2e at h/2: "
-                "order %.2f", m->name, period + e2, period, e1, h, e2, rate);
+    /* steps per period: errors well above round-off and in the asymptotic range */
+    const size_t n = m->order <= 2 ? 2048 : m->order <= 4 ? 512 : 128;
+    double e1 = period_error(m, &tm, period, 2, n), e2 = period_error(m, &tm, period, 2, 2 * n);
+    double rate = log2(fabs(e1 / e2));
+    cr_log_info("%s: period error %.2e at h = T/%zu, %.2e at h = T/%zu: order %.2f", m->name, e1,
+                n, e2, 2 * n, rate);
     cr_expect(fabs(rate - m->order) <= 0.3, "%s: period error %.3e then %.3e: order %.2f",
               m->name, e1, e2, rate);
-    cr_expect_leq(e2 / period, 1e-4, "%s: relative period error %.2e", m->name, e2 / period);
+    cr_expect_leq(fabs(e2) / period, 1e-4, "%s: relative period error %.2e", m->name,
+                  fabs(e2) / period);
   }
   gm_model_free(tm.model);
 }
@@ -177,7 +170,7 @@ Test(rigid_body, heavy_top_conserved_components) {
     const gm_method *m = gm_method_at(i);
     if (!test_accepts(m, tm.problem)) continue;
     double y[12];
-    tracker tr = run_tracked(m, &tm, 100000, 0.01, 0, 100, y);
+    tracker tr = run_tracked(m, &tm, cheap_row(m) ? 100000 : 10000, 0.01, 0, 100, y);
     cr_log_info("%s on heavy-top: L-vertical %.2e, L-axis %.2e, energy %.2e", m->name,
                 tr.drift[0], tr.drift[1], fmax(tr.energy[0], tr.energy[1]));
     if (m->flags & GM_SYMPLECTIC)
