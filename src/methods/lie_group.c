@@ -238,4 +238,8 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y_old
   return GM_OK;
 }
 
-const gm_stepper gm_lie_group_stepper = {init, step, release, NULL, NULL, NULL};
+static void invalidate(gm_integrator *it) {
+  if (it->work != NULL) gm_lie_galerkin_invalidate(it->work);
+}
+
+const gm_stepper gm_lie_group_stepper = {init, step, release, invalidate, NULL, NULL};

@@ -50,6 +50,7 @@ gm_status gm_lgvi_step(gm_integrator *it, double t, double h, const double *y, d
  * release and step. */
 gm_status gm_lie_galerkin_init(gm_integrator *it, int reduced);
 void gm_lie_galerkin_release(gm_lie_work *w);
+void gm_lie_galerkin_invalidate(gm_lie_work *w); /* forget the warm start */
 gm_status gm_lie_galerkin_step(gm_integrator *it, double t, double h, const double *y,
                                double *y_new, double e[9]);
 gm_status gm_rigid_splitting_step(gm_integrator *it, double t, double h, const double *y,

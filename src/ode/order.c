@@ -102,7 +102,8 @@ gm_status gm_order_measure(const gm_scheme *scheme, const gm_problem *problem, d
     double e = 0.0;
     if (gm_problem_space(problem) != NULL) { /* a manifold: the distance in its chart */
       double z[64];
-      if (gm_problem_chart_dim(problem) > 64 || gm_problem_to_chart(problem, exact, y, z) != GM_OK) {
+      if (gm_problem_chart_dim(problem) > 64 ||
+          gm_problem_to_chart(problem, exact, y, z) != GM_OK) {
         st = gm_error_set(err, GM_EDOMAIN, "the state at dt = %g is outside the chart", dt);
         break;
       }

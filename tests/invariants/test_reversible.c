@@ -22,6 +22,7 @@ static void check_problem(const char *name, double h) {
     const gm_method *m = gm_method_at(i);
     if (!test_accepts(m, tm.problem)) continue;
     double e = reversal_error(m, &tm, h);
+    cr_log_info("%s on %s: returns to %.2e", m->name, name, e);
     if (m->flags & GM_SYMMETRIC)
       cr_expect_leq(e, 1e-13, "%s on %s: returns with error %.2e", m->name, name, e);
     else /* a non-symmetric method of order r ≥ 6 returns to O(h^{r+1}): 1e-10 for

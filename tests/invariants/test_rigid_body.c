@@ -3,6 +3,8 @@
  * Crouch–Grossman drift, the intermediate-axis flip has the closed-form period to the method's
  * order, and the heavy top keeps its two conserved components. No row projects R back onto
  * SO(3): every update is R ← R (I + E) with E = F − I of a product of exact rotations. */
+#include <float.h>
+
 #include "test_util.h"
 
 typedef struct {
@@ -21,7 +23,8 @@ static int track(void *ctx, size_t step, double t, const double *y) {
   size_t h = step >= tr->half ? 1 : 0;
   tr->energy[h] = fmax(tr->energy[h], e);
   for (size_t k = 0; k < tr->pb->n_invariants && k < 8; ++k)
-    tr->drift[k] = fmax(tr->drift[k], fabs(tr->pb->invariants[k].value(tr->pb->ctx, y) - tr->inv0[k]));
+    tr->drift[k] =
+        fmax(tr->drift[k], fabs(tr->pb->invariants[k].value(tr->pb->ctx, y) - tr->inv0[k]));
   return 0;
 }
 
@@ -67,8 +70,9 @@ Test(rigid_body, million_steps_stay_on_the_group, .timeout = 300) {
     const size_t n = cheap_row(m) ? 1000000 : 20000;
     tracker tr = run_tracked(m, &tm, n, 0.01, 1, cheap_row(m) ? 1000 : 100, y);
     double defect = gm_problem_state_defect(tm.problem, y);
-    cr_log_info("%s, %zu steps: |R^T R - I| = %.2e, energy %.2e / %.2e (halves), casimir %.2e, L %.2e %.2e "
-                "%.2e", m->name, n, defect, tr.energy[0], tr.energy[1], tr.drift[0], tr.drift[1],
+    cr_log_info("%s, %zu steps: |R^T R - I| = %.2e, energy %.2e / %.2e (halves), casimir %.2e, "
+                "L %.2e %.2e %.2e",
+                m->name, n, defect, tr.energy[0], tr.energy[1], tr.drift[0], tr.drift[1],
                 tr.drift[2], tr.drift[3]);
     cr_expect_leq(defect, 1e-13, "%s: |R^T R - I| = %.2e after %zu steps", m->name, defect, n);
     if (m->flags & GM_SYMPLECTIC) {
@@ -76,8 +80,9 @@ Test(rigid_body, million_steps_stay_on_the_group, .timeout = 300) {
       for (size_t k = 0; k < 4; ++k)
         cr_expect_leq(tr.drift[k], 5e-13, "%s: %s drifts by %.2e", m->name,
                       tm.problem->invariants[k].name, tr.drift[k]);
-      /* energy bounded: no growth from the first half to the second */
-      cr_expect_leq(tr.energy[1], 1.1 * tr.energy[0] + 1e-13,
+      /* energy bounded: no growth from the first half to the second beyond the random walk of
+       * round-off, 4ε√n (Brouwer's law) */
+      cr_expect_leq(tr.energy[1], 1.1 * tr.energy[0] + 4 * DBL_EPSILON * sqrt((double)n),
                     "%s: energy error %.3e in the first half, %.3e in the second", m->name,
                     tr.energy[0], tr.energy[1]);
     }
@@ -101,12 +106,13 @@ Test(rigid_body, rkmk_and_crouch_grossman_drift) {
     const gm_method *m = gm_method_at(i);
     if (!test_accepts(m, tm.problem)) continue;
     double y[12];
-    tracker tr = run_tracked(m, &tm, cheap_row(m) ? 100000 : 10000, 0.2, 0, 100, y);
+    const size_t n = cheap_row(m) ? 100000 : 10000;
+    tracker tr = run_tracked(m, &tm, n, 0.2, 0, 100, y);
     cr_log_info("%s, h = 0.2: energy %.2e / %.2e, casimir %.2e", m->name, tr.energy[0],
                 tr.energy[1], tr.drift[0]);
     if (m->flags & GM_SYMPLECTIC)
-      cr_expect_leq(tr.energy[1], 1.1 * tr.energy[0] + 1e-13, "%s: %.3e then %.3e", m->name,
-                    tr.energy[0], tr.energy[1]);
+      cr_expect_leq(tr.energy[1], 1.1 * tr.energy[0] + 4 * DBL_EPSILON * sqrt((double)n),
+                    "%s: %.3e then %.3e", m->name, tr.energy[0], tr.energy[1]);
     else {
       cr_expect_geq(tr.energy[1], 1.7 * tr.energy[0], "%s: no drift? %.3e then %.3e", m->name,
                     tr.energy[0], tr.energy[1]);

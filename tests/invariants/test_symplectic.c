@@ -71,6 +71,7 @@ static void check_problem(const char *name, double h) {
     for (size_t k = 0; k < gm_problem_chart_dim(tm.problem); ++k) z[k] = 0.05 * (double)(k + 1);
     cr_assert_eq(gm_problem_from_chart(tm.problem, tm.y0, z, y), GM_OK);
     double defect = symplecticity_defect(m, tm.problem, y, h);
+    cr_log_info("%s on %s: |J^T Omega J - Omega| = %.2e", m->name, name, defect);
     if (m->flags & GM_SYMPLECTIC)
       cr_expect_leq(defect, 1e-10, "%s on %s: |JᵀΩJ − Ω| = %.2e", m->name, name, defect);
     else if (m->order < 6) /* a method of order r is symplectic up to O(h^{r+1}): for r ≥ 6
