@@ -85,9 +85,11 @@ static gm_status solve_f(gm_integrator *it, const gm_lie_work *w, double h, cons
       return GM_OK;
     last = step;
   }
+  /* |a J f| ≤ ‖J‖ |sin θ|: for h|μ| beyond about the largest moment there is no solution */
   return gm_fail(it->errmsg, sizeof it->errmsg, GM_ENOCONV,
-                 "Newton's method for F_k did not converge in %d iterations (residual %.3g)",
-                 LGVI_MAX_ITERATIONS, res_norm);
+                 "Newton's method for F_k did not converge in %d iterations (residual %.3g; "
+                 "h|Pi| = %.3g: the step may be too large for the body's rotation rate)",
+                 LGVI_MAX_ITERATIONS, res_norm, fabs(h) * gm_vec3_norm(mu));
 }
 
 gm_status gm_lgvi_step(gm_integrator *it, double t, double h, const double *y, double *y_new,

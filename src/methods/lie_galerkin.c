@@ -82,7 +82,8 @@ typedef struct gm_lie_galerkin {
   double l[GAL_MAX_S][GAL_MAX_S + 1];              /* l_κ(c_i) */
   double dl[GAL_MAX_S][GAL_MAX_S + 1];             /* l'_κ(c_i) */
   double d[GAL_MAX_S + 1];                         /* control times */
-  gm_newton *newton;
+  gm_newton *newton;                               /* simplified Newton */
+  gm_newton *full;                                 /* full Newton, when simplified stalls */
   double *u;                                       /* unknowns: ξ^κ/h, then (x^κ − x0)/h */
   /* the current step */
   gm_integrator *it;
@@ -211,9 +212,12 @@ gm_status gm_lie_galerkin_init(gm_integrator *it, int reduced) {
   gm_newton_options opt = gm_newton_defaults();
   opt.max_iterations = 40;
   opt.simplified = 1;
-  opt.increment_tol = 1e-16; /* to round-off: inexact solves would show as energy drift */
+  opt.increment_tol = 1e-15; /* near round-off: inexact solves would show as energy drift */
   g->u = calloc(g->n_unknowns, sizeof *g->u);
   if (g->u == NULL || gm_newton_create(g->n_unknowns, &opt, &g->newton) != GM_OK)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_ENOMEM, "out of memory");
+  opt.simplified = 0;
+  if (gm_newton_create(g->n_unknowns, &opt, &g->full) != GM_OK)
     return gm_fail(it->errmsg, sizeof it->errmsg, GM_ENOMEM, "out of memory");
   return GM_OK;
 }
@@ -226,9 +230,28 @@ void gm_lie_galerkin_release(gm_lie_work *w) {
   gm_lie_galerkin *g = w->galerkin;
   if (g == NULL) return;
   gm_newton_free(g->newton);
+  gm_newton_free(g->full);
   free(g->u);
   free(g);
   w->galerkin = NULL;
+}
+
+/* Starting values: the free rotation with Ω0 and the free flight with p0/m. */
+static void cold_start(gm_lie_galerkin *g, const gm_lie_work *w, const double *y) {
+  const size_t s = g->s, nt = g->nt, pi = w->pi;
+  double omega[3];
+  gm_mat3_vec(w->jinv, y + pi, omega);
+  for (size_t k = 1; k <= s; ++k)
+    for (int a = 0; a < 3; ++a) {
+      g->u[3 * (k - 1) + a] = g->d[k] * omega[a];
+      if (nt) g->u[3 * s + 3 * (k - 1) + a] = g->d[k] * y[pi + 3 + a] / w->mass;
+    }
+}
+
+static void count_solve(gm_integrator *it, const gm_newton *nw) {
+  it->stats.newton_iterations += gm_newton_iterations(nw);
+  it->stats.jacobian_evals += gm_newton_jacobian_evals(nw);
+  it->stats.fd_jacobians += gm_newton_jacobian_evals(nw);
 }
 
 gm_status gm_lie_galerkin_step(gm_integrator *it, double t, double h, const double *y,
@@ -242,24 +265,21 @@ gm_status gm_lie_galerkin_step(gm_integrator *it, double t, double h, const doub
   g->h = h;
   g->callback_status = GM_OK;
   /* Start from the last step's solution (scaled by 1/h, it changes by O(h) from step to step),
-   * or from the free rotation with Ω0 and the free flight with p0/m. */
-  if (!(g->warm && g->h_warm == h)) {
-    double omega[3];
-    gm_mat3_vec(w->jinv, y + pi, omega);
-    for (size_t k = 1; k <= s; ++k)
-      for (int a = 0; a < 3; ++a) {
-        g->u[3 * (k - 1) + a] = g->d[k] * omega[a];
-        if (nt) g->u[3 * s + 3 * (k - 1) + a] = g->d[k] * y[pi + 3 + a] / w->mass;
-      }
-  }
+   * or cold. Simplified Newton; if it stalls (large steps), full Newton from the cold start. */
+  if (!(g->warm && g->h_warm == h)) cold_start(g, w, y);
   g->warm = 0;
-  gm_status st = gm_newton_solve(g->newton, residual, NULL, g, g->u);
-  it->stats.newton_iterations += gm_newton_iterations(g->newton);
-  it->stats.jacobian_evals += gm_newton_jacobian_evals(g->newton);
-  it->stats.fd_jacobians += gm_newton_jacobian_evals(g->newton);
+  gm_newton *nw = g->newton;
+  gm_status st = gm_newton_solve(nw, residual, NULL, g, g->u);
+  if (st == GM_ENOCONV || st == GM_ESINGULAR) { /* simplified Newton stalled: full Newton */
+    count_solve(it, nw);
+    nw = g->full;
+    cold_start(g, w, y);
+    st = gm_newton_solve(nw, residual, NULL, g, g->u);
+  }
+  count_solve(it, nw);
   if (st == GM_ECALLBACK && g->callback_status != GM_OK) return g->callback_status;
   if (st != GM_OK) {
-    gm_fail(it->errmsg, sizeof it->errmsg, st, "%s", gm_newton_errmsg(g->newton));
+    gm_fail(it->errmsg, sizeof it->errmsg, st, "%s", gm_newton_errmsg(nw));
     return gm_stage_solve_failed(it, st, t, h);
   }
   if (residual(g, g->u, w->scratch) != 0) return g->callback_status; /* ∂S/∂ξ^s at the root */
