@@ -17,6 +17,8 @@ typedef struct gm_csv_writer gm_csv_writer;
 /* Open `path` (copied; truncated); the header line, written with the first row, is
  *   t, q1..qd, p1..pd, H, rel_energy_error, <invariant names>   (Hamiltonian kinds)
  *   t, y1..yn, <invariant names>                                (first order)
+ *   t, R11..R33, [x1..x3,] Pi1..Pi3, [p1..p3,] H, rel_energy_error, <invariants>  (rigid body:
+ *   the state space's component names; R as its 9 entries, row by row)
  * problem is borrowed (must outlive the writer); y0 (copied into H0) is the state the relative
  * energy error |H - H0| / |H0| refers to (|H - H0| when H0 = 0). Numbers are written with %.17g.
  * Errors: GM_EINVAL (NULL or empty arguments, invalid problem), GM_EIO (cannot open or write). */

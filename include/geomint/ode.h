@@ -28,11 +28,12 @@ typedef enum gm_problem_kind {
   GM_PROBLEM_HAMILTONIAN = 1u << 1,
   GM_PROBLEM_SEPARABLE = 1u << 2,
   GM_PROBLEM_POISSON = 1u << 3,
-  GM_PROBLEM_LAGRANGIAN = 1u << 4
+  GM_PROBLEM_LAGRANGIAN = 1u << 4,
+  GM_PROBLEM_RIGID_BODY = 1u << 5 /* mechanical system on SO(3) or SO(3) × R³ (see below) */
 } gm_problem_kind;
-#define GM_N_PROBLEM_KINDS 5
+#define GM_N_PROBLEM_KINDS 6
 
-/* "first-order", "hamiltonian", "separable", "poisson", "lagrangian" */
+/* "first-order", "hamiltonian", "separable", "poisson", "lagrangian", "rigid-body" */
 const char *gm_problem_kind_name(gm_problem_kind kind);
 
 /* A conserved (or monitored) quantity of the full state y. */
@@ -47,6 +48,27 @@ typedef struct gm_symmetry {
   const char *name;
   int (*generator)(void *ctx, const double *q, double *xi);
 } gm_symmetry;
+
+/* A state that does not live in Rⁿ (DESIGN §5b): how it is stored, the dimension of the
+ * manifold, a chart around any of its points, and how far a stored state is from it. Order,
+ * reversibility and symplecticity are measured in the chart exactly as for Rⁿ (where the chart
+ * is y − base). For phase spaces the chart coordinates are canonical (q then p), so that one
+ * step's Jacobian in them satisfies JᵀΩJ = Ω for a symplectic method. All callbacks get the
+ * problem's ctx; they return 0, or non-zero where the chart does not reach y. */
+typedef struct gm_state_space {
+  const char *name;      /* "T*SO(3)", ... */
+  size_t state_size;     /* numbers stored per state */
+  size_t chart_dim;      /* dimension of the manifold */
+  /* z (chart_dim) = coordinates of y in the chart centred at base (z = 0 at y = base) */
+  int (*to_chart)(void *ctx, const double *base, const double *y, double *z);
+  /* y = the point with coordinates z in the chart centred at base */
+  int (*from_chart)(void *ctx, const double *base, const double *z, double *y);
+  /* distance of a stored state from the manifold (0 on it) and what it measures */
+  double (*defect)(void *ctx, const double *y);
+  const char *defect_name; /* "|R^T R - I|" */
+  /* optional: the name of stored component i (CSV columns), e.g. "R11" or "Pi1" */
+  const char *const *component_names;
+} gm_state_space;
 
 typedef struct gm_problem {
   gm_problem_kind kind;
@@ -105,6 +127,21 @@ typedef struct gm_problem {
    * methods iterate on positions only, GM_SOLVER_FIXED_POINT_POSITIONS) */
   int kinetic_is_quadratic;
 
+  /* rigid body (GM_PROBLEM_RIGID_BODY): dim = 3 (attitude R ∈ SO(3)) or 6 (and a position
+   * x ∈ R³); state y = (R (9, row-major, body to space), x, Π (3, body angular momentum), p),
+   * Π = J Ω with Ω the body angular velocity, p = m ẋ. H = ½ Π·J⁻¹Π + |p|²/(2m) + V(R, x).
+   * Equations: R' = R Ω̂, Π' = Π × Ω − g, x' = p/m, p' = −∂V/∂x, where g is the gradient of
+   * V in the body frame: d/dε V(R exp(ε η̂), x)|₀ = g·η (−g is the torque). */
+  double inertia[9];  /* J, symmetric positive definite (body frame, row-major) */
+  double mass;        /* m > 0 when dim = 6 */
+  /* optional (NULL: a free body): V(R, x) and its gradients g (body frame) and ∂V/∂x
+   * (dim = 6 only; x and force_x are NULL when dim = 3) */
+  double (*rigid_potential)(void *ctx, const double *r, const double *x);
+  int (*rigid_potential_gradient)(void *ctx, const double *r, const double *x, double *g,
+                                  double *force_x);
+  /* optional, every kind: a state space other than Rⁿ (rigid bodies set one: T*SO(3)) */
+  const gm_state_space *space;
+
   /* optional, every kind */
   size_t n_invariants;
   const gm_invariant *invariants;                 /* borrowed, n_invariants entries */
@@ -118,6 +155,23 @@ size_t gm_problem_state_size(const gm_problem *problem);
  * than one vector y (first order, Poisson)? Also for a kind alone. */
 int gm_problem_has_momenta(const gm_problem *problem);
 int gm_problem_kind_has_momenta(gm_problem_kind kind);
+/* The state space: the problem's own, or NULL for Rⁿ. Chart dimension (the manifold's; the
+ * state size for Rⁿ), chart coordinates of y around base (Rⁿ: z = y − base), the inverse, and
+ * the distance of y from the manifold (Rⁿ: 0). */
+const gm_state_space *gm_problem_space(const gm_problem *problem);
+size_t gm_problem_chart_dim(const gm_problem *problem);
+gm_status gm_problem_to_chart(const gm_problem *problem, const double *base, const double *y,
+                              double *z);
+gm_status gm_problem_from_chart(const gm_problem *problem, const double *base, const double *z,
+                                double *y);
+double gm_problem_state_defect(const gm_problem *problem, const double *y);
+/* What the defect measures ("|R^T R - I|"; "" for Rⁿ). */
+const char *gm_problem_state_defect_name(const gm_problem *problem);
+/* The state space of rigid bodies with dim = 3 (T*SO(3), 12 numbers, chart dimension 6) or
+ * dim = 6 (T*(SO(3) × R³), 18 numbers, chart dimension 12); NULL for other dim. Static. */
+const gm_state_space *gm_rigid_body_space(size_t dim);
+/* States further than this from their manifold are refused by gm_integrator_set_state. */
+#define GM_STATE_DEFECT_TOLERANCE 1e-10
 /* Check that the callbacks the kind requires are present. On failure the message says which. */
 gm_status gm_problem_validate(const gm_problem *problem, gm_error *err);
 /* Does the problem have an energy (Hamiltonian kinds, Poisson, Lagrangian)? Its value at the
@@ -167,7 +221,9 @@ gm_status gm_integrator_create(const struct gm_method *method, const gm_problem 
                                gm_integrator **out, gm_error *err);
 void gm_integrator_free(gm_integrator *it);
 
-/* Set time and state (y copied, length gm_problem_state_size). NaN or infinite → GM_EDOMAIN. */
+/* Set time and state (y copied, length gm_problem_state_size). NaN or infinite → GM_EDOMAIN;
+ * a state off its manifold (defect > GM_STATE_DEFECT_TOLERANCE, e.g. a non-orthogonal R) →
+ * GM_EINVAL with the defect in the message. */
 gm_status gm_integrator_set_state(gm_integrator *it, double t, const double *y);
 /* The solver of the stage equations of an implicit method (also inside a composition).
  * GM_EUNSUPPORTED for explicit methods, or for GM_SOLVER_FIXED_POINT_POSITIONS when the

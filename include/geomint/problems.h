@@ -62,6 +62,12 @@ const gm_model_info *gm_model_info_of(const gm_model *model);
 double gm_model_param(const gm_model *model, const char *name); /* NaN when unknown or text */
 const char *gm_model_errmsg(const gm_model *model);
 
+/* The period of the body angular momentum Π(t) of a free rigid body with distinct principal
+ * moments (any order) from Π(0), in closed form: 4K(k)/λ (Landau & Lifshitz, Mechanics, §37).
+ * Π₂-type flips of the intermediate axis happen every half period. NaN on the separatrix, for
+ * a steady spin, or for equal moments. */
+double gm_free_rigid_body_period(const double inertia[3], const double pi[3]);
+
 #ifdef __cplusplus
 }
 #endif

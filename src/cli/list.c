@@ -16,7 +16,7 @@ static const char usage[] =
 
 static const gm_problem_kind kinds[] = {GM_PROBLEM_FIRST_ORDER, GM_PROBLEM_POISSON,
                                         GM_PROBLEM_HAMILTONIAN, GM_PROBLEM_SEPARABLE,
-                                        GM_PROBLEM_LAGRANGIAN};
+                                        GM_PROBLEM_LAGRANGIAN, GM_PROBLEM_RIGID_BODY};
 #define N_KINDS (sizeof kinds / sizeof kinds[0])
 
 static int has_energy_kind(gm_problem_kind kind) { return kind != GM_PROBLEM_FIRST_ORDER; }

@@ -117,6 +117,9 @@ static int print_json(const char *problem, const gm_scheme *sc, const gm_problem
   if (pb->kind == GM_PROBLEM_LAGRANGIAN && pb->n_constraints > 0) /* max |g(q)| at the end */
     cJSON_AddItemToObject(root, "constraint_residual",
                           cli_json_number(gm_constraint_residual(pb, r->y_final)));
+  if (gm_problem_space(pb) != NULL) /* distance from the manifold at the end: |R^T R - I| */
+    cJSON_AddItemToObject(root, "state_defect",
+                          cli_json_number(gm_problem_state_defect(pb, r->y_final)));
   cJSON_AddItemToObject(root, "final", final_state(pb, r));
   if (o->out != NULL) {
     cJSON_AddStringToObject(root, "csv", o->out);
@@ -166,6 +169,9 @@ static void print_summary(const char *problem, const gm_scheme *sc, const gm_pro
            gm_monitor_max_invariant_drift(r->monitor, k));
   if (pb->kind == GM_PROBLEM_LAGRANGIAN && pb->n_constraints > 0)
     printf("constraint        max |g(q)| = %.3e at the end\n", gm_constraint_residual(pb, r->y_final));
+  if (gm_problem_space(pb) != NULL)
+    printf("state space       %s = %.3e at the end\n", gm_problem_state_defect_name(pb),
+           gm_problem_state_defect(pb, r->y_final));
   printf("work              %zu force evaluations, %zu Newton iterations, %.3f s\n",
          r->stats.force_evals, r->stats.newton_iterations, r->wall_s);
   if (r->stats.fd_jacobians > 0)

@@ -58,8 +58,11 @@ static int name_columns(gm_csv_writer *w) {
   char name[32];
   size_t c = 0;
   w->column_names[c++] = copy_string("t");
+  const gm_state_space *space = gm_problem_space(pb);
   for (size_t i = 0; i < w->n_state; ++i) {
-    if (gm_problem_has_momenta(pb))
+    if (space != NULL && space->component_names != NULL) /* R11..R33, Pi1..: R as 9 columns */
+      snprintf(name, sizeof name, "%s", space->component_names[i]);
+    else if (gm_problem_has_momenta(pb))
       snprintf(name, sizeof name, "%c%zu", i < pb->dim ? 'q' : 'p', i % pb->dim + 1);
     else
       snprintf(name, sizeof name, "y%zu", i + 1);

@@ -36,6 +36,11 @@ gm_status gm_vi_gauss_tableau(const gm_method *m, gm_tableau *t);
 gm_status gm_vi_lobatto_tableau(const gm_method *m, gm_tableau *t);
 gm_status gm_vi_alpha_tableau(const gm_method *m, gm_tableau *t);
 
+/* Lie group rows and their stepper for rigid bodies (lie_group*.c). */
+extern const gm_method gm_lie_group_methods[];
+extern const size_t gm_n_lie_group_methods;
+extern const gm_stepper gm_lie_group_stepper;
+
 /* Shared by the implicit steppers (solve_support.c). */
 /* A failed solve of the stage equations: count it (convergence failures only) and prefix the
  * reason already in it->errmsg with the method, t and h. Returns status. */

@@ -52,6 +52,11 @@ gm_status gm_method_tableau(const gm_method *m, gm_tableau **out) {
       break;
     case GM_FAMILY_DISCRETE_GRADIENT: /* no coefficients */
       break;
+    case GM_FAMILY_LIE_GROUP: /* RKMK, Crouch–Grossman: a Butcher tableau; others: none */
+      if (m->a != NULL || m->compute != NULL)
+        ok = (t->a = copy_or_zero(m->a, s * s)) && (t->b = copy_or_zero(m->b, s)) &&
+             (t->c = copy_or_zero(m->c, s));
+      break;
   }
   if (!ok) {
     gm_tableau_free(t);

@@ -44,6 +44,9 @@ gm_status gm_eval_rhs(gm_integrator *it, double t, const double *y, double *f) {
     case GM_PROBLEM_LAGRANGIAN:
       return gm_fail(it->errmsg, sizeof it->errmsg, GM_EUNSUPPORTED,
                      "a Lagrangian problem has no first-order right-hand side");
+    case GM_PROBLEM_RIGID_BODY:
+      return gm_fail(it->errmsg, sizeof it->errmsg, GM_EUNSUPPORTED,
+                     "a rigid-body state lives on a group: it has no right-hand side in R^n");
   }
   for (size_t i = d; i < 2 * d; ++i) f[i] = -f[i];
   return GM_OK;
@@ -105,6 +108,7 @@ gm_status gm_eval_rhs_jacobian(gm_integrator *it, double t, const double *y, dou
       return GM_OK;
     case GM_PROBLEM_POISSON:
     case GM_PROBLEM_LAGRANGIAN:
+    case GM_PROBLEM_RIGID_BODY:
       break; /* no analytic Jacobian: handled above */
   }
   return GM_EINVAL;
@@ -139,6 +143,7 @@ gm_status gm_eval_poisson_gradient(gm_integrator *it, double t, const double *y,
       return GM_OK;
     case GM_PROBLEM_FIRST_ORDER:
     case GM_PROBLEM_LAGRANGIAN:
+    case GM_PROBLEM_RIGID_BODY:
       break;
   }
   return gm_fail(it->errmsg, sizeof it->errmsg, GM_EUNSUPPORTED,

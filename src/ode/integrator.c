@@ -21,7 +21,7 @@ static void list_kinds(unsigned accepts, char *buf, size_t cap) {
   buf[0] = '\0';
   const gm_problem_kind kinds[] = {GM_PROBLEM_FIRST_ORDER, GM_PROBLEM_POISSON,
                                    GM_PROBLEM_HAMILTONIAN, GM_PROBLEM_SEPARABLE,
-                                   GM_PROBLEM_LAGRANGIAN};
+                                   GM_PROBLEM_LAGRANGIAN, GM_PROBLEM_RIGID_BODY};
   size_t len = 0;
   for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; ++i) {
     if (!(accepts & (unsigned)kinds[i])) continue;
@@ -203,6 +203,12 @@ gm_status gm_integrator_set_state(gm_integrator *it, double t, const double *y) 
   if (bad < it->n)
     return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
                    "initial state component %zu is %g", bad + 1, y[bad]);
+  double defect = gm_problem_state_defect(it->problem, y);
+  if (!(defect <= GM_STATE_DEFECT_TOLERANCE))
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                   "initial state is not on the %s state space: %s = %.3g (tolerance %g)",
+                   gm_problem_kind_name(it->problem->kind),
+                   gm_problem_state_defect_name(it->problem), defect, GM_STATE_DEFECT_TOLERANCE);
   memcpy(it->y, y, it->n * sizeof *y);
   memset(it->carry, 0, it->n * sizeof *it->carry);
   it->t = t;

@@ -76,6 +76,13 @@ struct gm_integrator {
  * NaN when the Legendre transform cannot be inverted there. */
 double gm_lagrangian_energy(const gm_problem *problem, const double *y);
 
+/* Rigid bodies (src/ode/rigid_body.c): checks of the rigid-body kind (dim, J symmetric
+ * positive definite, mass), its energy, and J⁻¹ (GM_EINVAL with a message unless J is
+ * symmetric positive definite; err may be NULL). */
+gm_status gm_rigid_body_validate(const gm_problem *problem, gm_error *err);
+double gm_rigid_body_energy(const gm_problem *problem, const double *y);
+gm_status gm_rigid_inertia_inverse(const double j[9], double inv[9], gm_error *err);
+
 /* ---- evaluations through the problem's kind (src/ode/evaluate.c) ------------------------ */
 /* Each counts itself in it->stats and, on a callback failure, writes it->errmsg (naming the
  * callback, its return value and t) and returns GM_ECALLBACK. */

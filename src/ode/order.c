@@ -136,7 +136,17 @@ gm_status gm_order_measure(const gm_scheme *scheme, const gm_problem *problem, d
       }
     }
     double e = 0.0;
-    for (size_t i = 0; i < n; ++i) e = fmax(e, fabs(y[i] - exact[i]));
+    if (gm_problem_space(problem) != NULL) { /* a manifold: the distance in its chart */
+      double z[64];
+      if (gm_problem_chart_dim(problem) > 64 ||
+          gm_problem_to_chart(problem, exact, y, z) != GM_OK) {
+        st = gm_error_set(err, GM_EDOMAIN, "the state at dt = %g is outside the chart", dt);
+        break;
+      }
+      for (size_t i = 0; i < gm_problem_chart_dim(problem); ++i) e = fmax(e, fabs(z[i]));
+    } else {
+      for (size_t i = 0; i < n; ++i) e = fmax(e, fabs(y[i] - exact[i]));
+    }
     out->dts[l] = dt;
     out->errors[l] = e;
     out->n_levels = l + 1;

@@ -15,6 +15,8 @@ const char *gm_problem_kind_name(gm_problem_kind kind) {
       return "poisson";
     case GM_PROBLEM_LAGRANGIAN:
       return "lagrangian";
+    case GM_PROBLEM_RIGID_BODY:
+      return "rigid-body";
   }
   return "unknown";
 }
@@ -33,6 +35,8 @@ int gm_problem_has_momenta(const gm_problem *problem) {
 
 size_t gm_problem_state_size(const gm_problem *problem) {
   if (problem == NULL) return 0;
+  if (problem->kind == GM_PROBLEM_RIGID_BODY) return 2 * problem->dim + 6; /* R is 9 numbers */
+  if (problem->space != NULL) return problem->space->state_size;
   return gm_problem_has_momenta(problem) ? 2 * problem->dim : problem->dim;
 }
 
@@ -79,6 +83,11 @@ gm_status gm_problem_validate(const gm_problem *problem, gm_error *err) {
             problem->symmetries[k].name == NULL)
           return gm_error_set(err, GM_EINVAL, "symmetry %zu has no name or no generator", k);
       break;
+    case GM_PROBLEM_RIGID_BODY: {
+      gm_status st = gm_rigid_body_validate(problem, err);
+      if (st != GM_OK) return st;
+      break;
+    }
     default:
       return gm_error_set(err, GM_EINVAL, "unknown problem kind %d", (int)problem->kind);
   }
@@ -93,13 +102,15 @@ gm_status gm_problem_validate(const gm_problem *problem, gm_error *err) {
 int gm_problem_has_energy(const gm_problem *problem) {
   return problem != NULL && (is_hamiltonian_kind(problem->kind) ||
                              problem->kind == GM_PROBLEM_POISSON ||
-                             problem->kind == GM_PROBLEM_LAGRANGIAN);
+                             problem->kind == GM_PROBLEM_LAGRANGIAN ||
+                             problem->kind == GM_PROBLEM_RIGID_BODY);
 }
 
 double gm_problem_energy(const gm_problem *problem, const double *y) {
   if (!gm_problem_has_energy(problem)) return NAN;
   if (problem->kind == GM_PROBLEM_POISSON) return problem->poisson_energy(problem->ctx, y);
   if (problem->kind == GM_PROBLEM_LAGRANGIAN) return gm_lagrangian_energy(problem, y);
+  if (problem->kind == GM_PROBLEM_RIGID_BODY) return gm_rigid_body_energy(problem, y);
   const double *q = y, *p = y + problem->dim;
   if (problem->kind == GM_PROBLEM_SEPARABLE)
     return problem->kinetic(problem->ctx, p) + problem->potential(problem->ctx, q);
@@ -116,6 +127,7 @@ int gm_problem_has_jacobian(const gm_problem *problem) {
       return problem->kinetic_hessian != NULL && problem->potential_hessian != NULL;
     case GM_PROBLEM_POISSON:     /* ∂(S∇H)/∂y involves ∂S/∂y: differences */
     case GM_PROBLEM_LAGRANGIAN:  /* not a first-order system for Runge–Kutta methods */
+    case GM_PROBLEM_RIGID_BODY:  /* a state on a group: Lie group methods only */
       return 0;
   }
   return 0;

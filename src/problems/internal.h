@@ -74,5 +74,11 @@ extern const gm_model_def gm_model_double_spherical_pendulum;
 extern const gm_model_def gm_model_spring_pendulum;
 extern const gm_model_def gm_model_j2_satellite;
 extern const gm_model_def gm_model_damped_oscillator;
+/* Rigid bodies on SO(3) (× R³) (issue 13; shared helpers in problems/rigid.h) */
+extern const gm_model_def gm_model_free_rigid_body;
+extern const gm_model_def gm_model_heavy_top;
+extern const gm_model_def gm_model_pendulum_3d;
+extern const gm_model_def gm_model_satellite;
+extern const gm_model_def gm_model_central_body;
 
 #endif

@@ -24,6 +24,11 @@ static const gm_model_def *const defs[] = {
     &gm_model_spring_pendulum,
     &gm_model_j2_satellite,
     &gm_model_damped_oscillator,
+    &gm_model_free_rigid_body,
+    &gm_model_heavy_top,
+    &gm_model_pendulum_3d,
+    &gm_model_satellite,
+    &gm_model_central_body,
 };
 static const size_t n_defs = sizeof defs / sizeof defs[0];
 
@@ -304,6 +309,13 @@ gm_status gm_model_build(gm_model *m) {
     if (def->initial_changed == NULL || !def->initial_changed(m->ctx, m->y0))
       m->problem.exact = NULL;
   }
+  /* A state off its manifold (a non-orthogonal R typed by hand) is no state to start from. */
+  double defect = gm_problem_state_defect(&m->problem, m->y0);
+  if (!(defect <= GM_STATE_DEFECT_TOLERANCE))
+    return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                   "%s: the initial state is not on its manifold: %s = %.3g (tolerance %g)",
+                   def->info.name, gm_problem_state_defect_name(&m->problem), defect,
+                   GM_STATE_DEFECT_TOLERANCE);
   st = check_on_manifold(m);
   if (st != GM_OK) return st;
   /* An initial state where the energy or an invariant is not finite (a collision, a log of a

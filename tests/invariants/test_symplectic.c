@@ -3,8 +3,14 @@
  * near 1e-12). The base point is moved off the initial state, where explicit Euler happens to
  * be area-preserving for the pendulum (cos q = 0). Every row
  * flagged symplectic is checked on every Hamiltonian library problem it accepts; the
- * non-symplectic rows must fail the same check, so the check can fail. */
+ * non-symplectic rows must fail the same check, so the check can fail.
+ * States on a manifold (rigid bodies on T*SO(3)) are differentiated in the problem's canonical
+ * chart (gm_problem_to_chart: exponential coordinates ξ with their conjugate momenta): the
+ * step maps z ↦ chart_{Φ(y)}(Φ(chart_y⁻¹(z))). For Rⁿ the chart is y − base and this is the
+ * plain Jacobian. */
 #include "test_util.h"
+
+#define MAX_N 24
 
 static void one_step(const gm_method *m, const gm_problem *pb, const double *y, double h,
                      double *out) {
@@ -14,22 +20,33 @@ static void one_step(const gm_method *m, const gm_problem *pb, const double *y, 
   gm_integrator_free(it);
 }
 
+/* chart coordinates (around base_out) of one step from the point z (around base_in) */
+static void one_step_in_chart(const gm_method *m, const gm_problem *pb, const double *base_in,
+                              const double *base_out, const double *z, double h, double *out) {
+  double y[MAX_N], y1[MAX_N];
+  cr_assert_eq(gm_problem_from_chart(pb, base_in, z, y), GM_OK);
+  one_step(m, pb, y, h, y1);
+  cr_assert_eq(gm_problem_to_chart(pb, base_out, y1, out), GM_OK);
+}
+
 /* max |Jᵀ Ω J − Ω| for one step of size h from y */
 static double symplecticity_defect(const gm_method *m, const gm_problem *pb, const double *y0,
                                    double h) {
-  const size_t n = gm_problem_state_size(pb), d = n / 2;
-  double jac[16][16], y[16], fp1[16], fp2[16], fm1[16], fm2[16];
+  const size_t n = gm_problem_chart_dim(pb), d = n / 2;
+  double jac[MAX_N][MAX_N], z[MAX_N], y1[MAX_N], fp1[MAX_N], fp2[MAX_N], fm1[MAX_N], fm2[MAX_N];
   const double delta = 1e-4;
+  cr_assert_leq(gm_problem_state_size(pb), MAX_N);
+  one_step(m, pb, y0, h, y1); /* the output chart is centred at the step's image of y0 */
   for (size_t j = 0; j < n; ++j) {
-    memcpy(y, y0, n * sizeof *y);
-    y[j] = y0[j] + delta;
-    one_step(m, pb, y, h, fp1);
-    y[j] = y0[j] + 2 * delta;
-    one_step(m, pb, y, h, fp2);
-    y[j] = y0[j] - delta;
-    one_step(m, pb, y, h, fm1);
-    y[j] = y0[j] - 2 * delta;
-    one_step(m, pb, y, h, fm2);
+    memset(z, 0, n * sizeof *z);
+    z[j] = delta;
+    one_step_in_chart(m, pb, y0, y1, z, h, fp1);
+    z[j] = 2 * delta;
+    one_step_in_chart(m, pb, y0, y1, z, h, fp2);
+    z[j] = -delta;
+    one_step_in_chart(m, pb, y0, y1, z, h, fm1);
+    z[j] = -2 * delta;
+    one_step_in_chart(m, pb, y0, y1, z, h, fm2);
     for (size_t i = 0; i < n; ++i)
       jac[i][j] = (-fp2[i] + 8 * fp1[i] - 8 * fm1[i] + fm2[i]) / (12 * delta);
   }
@@ -50,9 +67,11 @@ static void check_problem(const char *name, double h) {
   for (size_t i = 0; i < gm_method_count(); ++i) {
     const gm_method *m = gm_method_at(i);
     if (!test_accepts(m, tm.problem)) continue;
-    double y[16];
-    for (size_t k = 0; k < tm.n; ++k) y[k] = tm.y0[k] + 0.05 * (double)(k + 1);
+    double y[MAX_N], z[MAX_N];
+    for (size_t k = 0; k < gm_problem_chart_dim(tm.problem); ++k) z[k] = 0.05 * (double)(k + 1);
+    cr_assert_eq(gm_problem_from_chart(tm.problem, tm.y0, z, y), GM_OK);
     double defect = symplecticity_defect(m, tm.problem, y, h);
+    cr_log_info("%s on %s: |J^T Omega J - Omega| = %.2e", m->name, name, defect);
     if (m->flags & GM_SYMPLECTIC)
       cr_expect_leq(defect, 1e-10, "%s on %s: |JᵀΩJ − Ω| = %.2e", m->name, name, defect);
     else if (m->order < 6) /* a method of order r is symplectic up to O(h^{r+1}): for r ≥ 6
@@ -66,3 +85,7 @@ static void check_problem(const char *name, double h) {
 Test(symplectic, kepler) { check_problem("kepler", 0.1); }
 Test(symplectic, henon_heiles) { check_problem("henon-heiles", 0.2); }
 Test(symplectic, pendulum) { check_problem("pendulum", 0.5); }
+/* rigid bodies in the canonical chart of T*SO(3) (× T*R³) */
+Test(symplectic, rigid_body) { check_problem("rigid-body", 0.2); }
+Test(symplectic, heavy_top) { check_problem("heavy-top", 0.1); }
+Test(symplectic, central_body) { check_problem("central-body", 0.1); }

@@ -142,10 +142,11 @@ Test(problems, gradients_and_hessians_match_differences) {
   for (size_t k = 0; k < gm_model_count(); ++k) {
     const gm_model_info *info = gm_model_info_at(k);
     if (info->kind == GM_PROBLEM_FIRST_ORDER || info->kind == GM_PROBLEM_POISSON ||
-        info->kind == GM_PROBLEM_LAGRANGIAN)
+        info->kind == GM_PROBLEM_LAGRANGIAN || info->kind == GM_PROBLEM_RIGID_BODY)
       continue;
     check_energy_derivatives(info->name, NULL); /* Poisson (lotka-volterra): its own test;
-                                                   Lagrangians: test_problems_lagrangian.c */
+                                                   Lagrangians: test_problems_lagrangian.c;
+                                                   rigid bodies: test_problems_rigid.c */
   }
 }
 
