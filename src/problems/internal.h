@@ -74,5 +74,9 @@ extern const gm_model_def gm_model_double_spherical_pendulum;
 extern const gm_model_def gm_model_spring_pendulum;
 extern const gm_model_def gm_model_j2_satellite;
 extern const gm_model_def gm_model_damped_oscillator;
+/* split potentials U + W (issue 12) */
+extern const gm_model_def gm_model_toy_resonance;
+extern const gm_model_def gm_model_stiff_spring_pendulum;
+extern const gm_model_def gm_model_diatomic_chain;
 
 #endif

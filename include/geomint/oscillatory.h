@@ -1,0 +1,107 @@
+/* geomint oscillatory: highly oscillatory and multiscale problems (issue 12).
+ *
+ * Split potentials. A separable problem H = ½pᵀM⁻¹p + V(q) whose potential splits as
+ * V = U + W, U slow and W fast (L = ½q̇ᵀMq̇ − U(q) − W(q); seed 000 §2.2.1), carries a
+ * gm_split_potential in gm_problem.split. Every method that integrates separable problems
+ * still integrates it (V = U + W is the problem's potential); the rows of family
+ * "oscillatory" (variational IMEX, impulse / r-RESPA, mollified impulse, trigonometric and
+ * variational trigonometric integrators) need the split, and the filtered ones a fast
+ * quadratic part W = ½ qᵀΩ²q with Ω symmetric positive semidefinite, given as a matrix or a
+ * diagonal. Ω (with the mass) is eigendecomposed once, when the integrator is created (LAPACK
+ * dsyev); the filter values f(hν_k) are recomputed only when the step size changes.
+ *
+ * Multiscale tools (seed 001 §5.7): Filon–Lobatto quadrature of oscillatory integrands and the
+ * 1-D multiscale finite element method. */
+#ifndef GEOMINT_OSCILLATORY_H
+#define GEOMINT_OSCILLATORY_H
+
+#include <stddef.h>
+
+#include "geomint/core.h"
+#include "geomint/ode.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* V = U + W. Callbacks take the problem's ctx. U is required; W is given by its callbacks or,
+ * when omega is set, is ½ qᵀΩ²q (then fast/fast_gradient may be NULL and are not called). */
+typedef struct gm_split_potential {
+  double (*slow)(void *ctx, const double *q);                        /* U(q) */
+  int (*slow_gradient)(void *ctx, const double *q, double *out);     /* ∇U(q) */
+  double (*fast)(void *ctx, const double *q);                        /* W(q) */
+  int (*fast_gradient)(void *ctx, const double *q, double *out);     /* ∇W(q) */
+  int (*fast_hessian)(void *ctx, const double *q, double *hessian);  /* optional, d×d */
+  /* optional fast quadratic part: Ω, borrowed; d×d row-major symmetric PSD, or its d diagonal
+   * entries (≥ 0) when omega_is_diagonal */
+  const double *omega;
+  int omega_is_diagonal;
+  /* optional diagonal mass matrix M (d entries > 0), borrowed; NULL: M = I. The problem's
+   * kinetic energy must be ½ pᵀM⁻¹p (checked when an oscillatory integrator is created). */
+  const double *mass;
+} gm_split_potential;
+
+/* Check a problem's split potential: separable with quadratic kinetic energy, U and W present,
+ * Ω symmetric (to 1e-12 relative) and positive semidefinite (eigenvalues ≥ −1e-12·max|λ|),
+ * masses positive and consistent with the kinetic energy. GM_EINVAL with a message. */
+gm_status gm_split_potential_validate(const gm_problem *problem, gm_error *err);
+
+/* Options of the oscillatory rows (after gm_integrator_create, before stepping). */
+
+/* Number of Verlet substeps on the fast part (impulse / r-RESPA, mollified impulse).
+ * n = 0 → GM_EINVAL; GM_EUNSUPPORTED for rows without substeps. */
+gm_status gm_oscillatory_set_substeps(gm_integrator *it, size_t n);
+
+/* The three equivalent forms of variational IMEX with a quadratic fast part (seed 000 §2.2):
+ * the linear solve of implicit midpoint, Verlet with the modified mass M̃ = M + (hΩ/2)²
+ * (Prop. 2.2.1), and the exact rotation by the modified frequency hω̃ = 2 arctan(hω/2)
+ * (§2.2.5). GM_IMEX_AUTO (the default) takes the fastest measured one: the rotation when Ω and
+ * M are diagonal, the linear solve otherwise (docs/oscillatory.md). */
+typedef enum gm_imex_form {
+  GM_IMEX_AUTO = 0,
+  GM_IMEX_LINEAR_SOLVE,
+  GM_IMEX_MODIFIED_MASS,
+  GM_IMEX_MODIFIED_FREQUENCY
+} gm_imex_form;
+gm_status gm_oscillatory_set_imex_form(gm_integrator *it, gm_imex_form form);
+
+/* A filter function of ξ = hν (ν an eigenfrequency of the fast part). */
+typedef double (*gm_filter_fn)(double xi);
+
+/* Replace the filters of a trigonometric row (GNI XIII (2.7)–(2.8)): φ filters the argument of
+ * the slow force, ψ its weight in the position update; ψ0, ψ1 are taken as cos(ξ)ψ1 and
+ * ψ(ξ)/sinc(ξ) (the symmetric choice, GNI XIII (2.10)). For the scalar variational
+ * trigonometric row (vti-scalar) only φ is free and psi must be NULL (ψ = sinc²(ξ/2)/φ).
+ * GM_EUNSUPPORTED for other rows. */
+gm_status gm_oscillatory_set_filters(gm_integrator *it, gm_filter_fn phi, gm_filter_fn psi);
+
+/* sinc ξ = sin ξ / ξ (1 at 0), with a series near 0. */
+double gm_sinc(double xi);
+
+/* ---- Filon–Lobatto quadrature (seed 001 §5.7; Iserles & Nørsett 2005) ---------------------- */
+
+/* Weights of the n-point Filon–Lobatto rule for ∫_0^1 f(x) e^{i κ x} dx ≈ Σ (b_re + i b_im)_k
+ * f(c_k), c the Gauss–Lobatto nodes on [0, 1] (written, n values), b_k = ∫_0^1 l_k(x) e^{iκx}dx
+ * with l_k the Lagrange polynomials on c. n ≥ 2. The moments ∫ x^j e^{iκx} are computed by a
+ * stable recurrence (series for small κ). */
+gm_status gm_filon_lobatto_weights(size_t n, double kappa, double *nodes, double *b_re,
+                                   double *b_im);
+/* ∫_a^b f(t) e^{iωt} dt by one Filon–Lobatto panel of n points: real and imaginary parts. */
+gm_status gm_filon_lobatto(size_t n, double a, double b, double omega,
+                           double (*f)(void *ctx, double t), void *ctx, double *re, double *im);
+
+/* ---- 1-D multiscale finite elements (seed 001 §5.7.1, App. C) ------------------------------ */
+
+/* −(a(x) u′)′ = f on (0, 1)... see docs: we solve (a u′)′ = f with u(0) = u(1) = 0 on the
+ * uniform mesh of n_elements elements, with the multiscale shape functions (a φ′)′ = 0 on each
+ * element (multiscale = 1) or the standard P1 hat functions (multiscale = 0). Integrals of 1/a,
+ * x/a and f·φ by composite Gauss–Legendre with n_quad points per element and n_sub subintervals
+ * (resolve a's oscillation). nodal: n_elements + 1 values (written). */
+gm_status gm_msfem_1d(double (*a)(void *ctx, double x), double (*f)(void *ctx, double x),
+                      void *ctx, size_t n_elements, int multiscale, size_t n_sub, double *nodal,
+                      gm_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
