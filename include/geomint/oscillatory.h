@@ -55,8 +55,9 @@ gm_status gm_oscillatory_set_substeps(gm_integrator *it, size_t n);
 /* The three equivalent forms of variational IMEX with a quadratic fast part (seed 000 §2.2):
  * the linear solve of implicit midpoint, Verlet with the modified mass M̃ = M + (hΩ/2)²
  * (Prop. 2.2.1), and the exact rotation by the modified frequency hω̃ = 2 arctan(hω/2)
- * (§2.2.5). GM_IMEX_AUTO (the default) takes the fastest measured one: the rotation when Ω and
- * M are diagonal, the linear solve otherwise (docs/oscillatory.md). */
+ * (§2.2.5). GM_IMEX_AUTO (the default) takes the fastest measured one: the rotation when Ω is
+ * diagonal or d ≤ 16, the modified mass otherwise (bench/oscillatory_imex_forms.c,
+ * docs/oscillatory.md). */
 typedef enum gm_imex_form {
   GM_IMEX_AUTO = 0,
   GM_IMEX_LINEAR_SOLVE,
