@@ -79,17 +79,8 @@ gm_status gm_oscillatory_set_filters(gm_integrator *it, gm_filter_fn phi, gm_fil
 /* sinc ξ = sin ξ / ξ (1 at 0), with a series near 0. */
 double gm_sinc(double xi);
 
-/* ---- Filon–Lobatto quadrature (seed 001 §5.7; Iserles & Nørsett 2005) ---------------------- */
-
-/* Weights of the n-point Filon–Lobatto rule for ∫_0^1 f(x) e^{i κ x} dx ≈ Σ (b_re + i b_im)_k
- * f(c_k), c the Gauss–Lobatto nodes on [0, 1] (written, n values), b_k = ∫_0^1 l_k(x) e^{iκx}dx
- * with l_k the Lagrange polynomials on c. n ≥ 2. The moments ∫ x^j e^{iκx} are computed by a
- * stable recurrence (series for small κ). */
-gm_status gm_filon_lobatto_weights(size_t n, double kappa, double *nodes, double *b_re,
-                                   double *b_im);
-/* ∫_a^b f(t) e^{iωt} dt by one Filon–Lobatto panel of n points: real and imaginary parts. */
-gm_status gm_filon_lobatto(size_t n, double a, double b, double omega,
-                           double (*f)(void *ctx, double t), void *ctx, double *re, double *im);
+/* Filon–Lobatto quadrature (the core routine behind the multiscale variational integrator) is
+ * declared in geomint/core.h: gm_filon_lobatto_weights, gm_filon_lobatto. */
 
 /* ---- 1-D multiscale finite elements (seed 001 §5.7.1, App. C) ------------------------------ */
 
