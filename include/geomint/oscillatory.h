@@ -84,11 +84,14 @@ double gm_sinc(double xi);
 
 /* ---- 1-D multiscale finite elements (seed 001 §5.7.1, App. C) ------------------------------ */
 
-/* −(a(x) u′)′ = f on (0, 1)... see docs: we solve (a u′)′ = f with u(0) = u(1) = 0 on the
- * uniform mesh of n_elements elements, with the multiscale shape functions (a φ′)′ = 0 on each
- * element (multiscale = 1) or the standard P1 hat functions (multiscale = 0). Integrals of 1/a,
- * x/a and f·φ by composite Gauss–Legendre with n_quad points per element and n_sub subintervals
- * (resolve a's oscillation). nodal: n_elements + 1 values (written). */
+/* Solve (a(x) u′)′ = f(x) on (0, 1), u(0) = u(1) = 0, by Galerkin on the uniform mesh of
+ * n_elements elements (≥ 1), either with the multiscale shape functions (multiscale = 1): on
+ * each element the solutions of (a φ′)′ = 0, φ(x) = ∫_{x_i}^x ds/a / ∫_{x_i}^{x_i+1} ds/a, so
+ * the element stiffness is 1/∫_e 1/a (the harmonic mean) and the nodal values are exact; or
+ * with the standard P1 hat functions (multiscale = 0, stiffness ∫_e a / h²). The integrals of
+ * 1/a, a and f·φ use n_sub subintervals per element with 8-point Gauss–Legendre (choose them
+ * shorter than a quarter of a's oscillation). nodal: n_elements + 1 values (written).
+ * GM_EINVAL for n_elements = 0, n_sub = 0, a ≤ 0 or not finite somewhere (message in err). */
 gm_status gm_msfem_1d(double (*a)(void *ctx, double x), double (*f)(void *ctx, double x),
                       void *ctx, size_t n_elements, int multiscale, size_t n_sub, double *nodal,
                       gm_error *err);
