@@ -96,6 +96,35 @@ gm_status gm_msfem_1d(double (*a)(void *ctx, double x), double (*f)(void *ctx, d
                       void *ctx, size_t n_elements, int multiscale, size_t n_sub, double *nodal,
                       gm_error *err);
 
+/* ---- multiscale variational integrator (seed 001 §5.7.2) --------------------------------- */
+
+/* For the stiff spring pendulum in polar coordinates q = (a, θ), p = (m ȧ, m (l + a)² θ̇),
+ * L = (m/2)(ȧ² + (l + a)²θ̇²) + m g (l + a) cos θ − (k/2)a² (the model spring-pendulum): the
+ * Galerkin discrete Lagrangian on a(τ) = P(τ) + α sin ωτ + β cos ωτ (or the seed's
+ * P(τ)(1 + α sin ωτ + β cos ωτ)), θ(τ) = T(τ), P and T polynomials of the given degree,
+ * integrated by Filon–Lobatto quadrature; ω is fixed (0 in the options: √(k/m)). Update
+ * equations and derivation: docs/oscillatory.md. */
+typedef struct gm_msvi_options {
+  double m, g, k, l;
+  double omega;         /* 0: √(k/m) */
+  size_t degree;        /* of P and T, 1..3 (default 2) */
+  size_t filon_points;  /* 2..8 (default 3) */
+  int additive;         /* 1 (default): a = P + α sin ωτ + β cos ωτ; 0: the seed's
+                           a = P (1 + α sin ωτ + β cos ωτ), whose Newton system fails to converge
+                           on this problem (docs/oscillatory.md) */
+} gm_msvi_options;
+typedef struct gm_msvi gm_msvi;
+
+gm_msvi_options gm_msvi_defaults(void); /* m = 1, g = 9.81, k = 10⁴, l = 1, degree 2, 3 points,
+                                           additive */
+gm_status gm_msvi_create(const gm_msvi_options *options, gm_msvi **out, gm_error *err);
+void gm_msvi_free(gm_msvi *vi);
+/* One step of size h from (q, p) (both 2 values, overwritten). Newton's method on the
+ * discrete Euler–Lagrange system; GM_ENOCONV with a message when it fails. */
+gm_status gm_msvi_step(gm_msvi *vi, double h, double *q, double *p);
+const char *gm_msvi_errmsg(const gm_msvi *vi);
+size_t gm_msvi_newton_iterations(const gm_msvi *vi); /* of the last step */
+
 #ifdef __cplusplus
 }
 #endif

@@ -23,7 +23,10 @@ static const char usage[] =
     "                  vti h = 0.05 (Fig 2.3)\n"
     "  work-precision  FPU, T = 200: error of the slow components and of I at T against the\n"
     "                  step, for every oscillatory row, verlet and the best composition\n"
-    "  all             the four\n"
+    "  multiscale      the multiscale variational integrator on the stiff spring pendulum\n"
+    "                  (seed 001 5.7.2) against vi-midpoint and imex, and 1-D MsFEM against P1\n"
+    "                  (seed 001 5.7.1): tables only\n"
+    "  all             all of them\n"
     "Writes CSV files and gnuplot scripts into DIR and draws PNG figures; prints a table.\n\n"
     "options:\n"
     "  --out DIR    output directory, created if missing (default oscillatory-output)\n"
@@ -516,6 +519,135 @@ static int experiment_work_precision(const char *dir, int plot) {
   return run_gnuplot_script(script);
 }
 
+/* ---- multiscale: the multiscale VI on the stiff spring pendulum, MsFEM in 1-D -------------- */
+
+/* θ(T) and a(T) of the stiff spring pendulum (seed 001 §5.7.2 defaults, θ0 = 1, at rest at the
+ * static stretch) by a polar-coordinate integrator row of the model spring-pendulum */
+static int spring_row(const char *method, double t_end, double h, double *a, double *theta) {
+  gm_model *model = NULL;
+  int rc = cli_open_model(CMD, "spring-pendulum", &(cli_settings){0, {NULL}}, &model);
+  if (rc != CLI_EXIT_OK) return rc;
+  gm_integrator *it = start(model, method, 0);
+  gm_status st = it ? gm_integrator_integrate(it, t_end, h) : GM_EINVAL;
+  if (st == GM_OK) {
+    *a = gm_integrator_state(it)[0];
+    *theta = gm_integrator_state(it)[1];
+  }
+  gm_integrator_free(it);
+  gm_model_free(model);
+  return st == GM_OK ? CLI_EXIT_OK : CLI_EXIT_FAILURE;
+}
+
+/* the same by imex on the Cartesian split form (stiff-spring-pendulum) */
+static int spring_imex(double t_end, double h, double *a, double *theta) {
+  gm_model *model = NULL;
+  int rc = cli_open_model(CMD, "stiff-spring-pendulum", &(cli_settings){0, {NULL}}, &model);
+  if (rc != CLI_EXIT_OK) return rc;
+  gm_integrator *it = start(model, "imex", 0);
+  gm_status st = it ? gm_integrator_integrate(it, t_end, h) : GM_EINVAL;
+  if (st == GM_OK) {
+    const double *y = gm_integrator_state(it);
+    *a = hypot(y[0], y[1]) - 1.0;
+    *theta = atan2(y[0], -y[1]);
+  }
+  gm_integrator_free(it);
+  gm_model_free(model);
+  return st == GM_OK ? CLI_EXIT_OK : CLI_EXIT_FAILURE;
+}
+
+/* msvi from the same initial state; returns the step index that failed, or n_steps */
+static size_t spring_msvi(int additive, double t_end, double h, double *a, double *theta,
+                          double *newton) {
+  gm_msvi_options o = gm_msvi_defaults();
+  o.additive = additive;
+  gm_msvi *vi = NULL;
+  if (gm_msvi_create(&o, &vi, NULL) != GM_OK) return 0;
+  double q[2] = {o.m * o.g / o.k, 1.0}, p[2] = {0.0, 0.0};
+  const size_t n = (size_t)llround(t_end / h);
+  size_t k = 0, its = 0;
+  for (; k < n; ++k) {
+    if (gm_msvi_step(vi, h, q, p) != GM_OK) break;
+    its += gm_msvi_newton_iterations(vi);
+  }
+  *a = q[0];
+  *theta = q[1];
+  *newton = k ? (double)its / (double)k : NAN;
+  gm_msvi_free(vi);
+  return k;
+}
+
+static double msfem_a(void *ctx, double x) {
+  (void)ctx;
+  return 10.0 / (1.0 + 0.95 * sin(2.0 * 3.14159265358979323846 * x / 0.025));
+}
+static double msfem_f(void *ctx, double x) {
+  (void)ctx;
+  return x * x;
+}
+
+static int experiment_multiscale(void) {
+  printf("multiscale VI (seed 001 5.7.2): stiff spring pendulum m = 1, g = 9.81, k = 1e4, l = 1,\n"
+         "  theta0 = 1 at rest; fast period 2 pi/100 = 0.063; errors at T against\n"
+         "  vi-galerkin-gauss-2 with h = 1e-4 (4th order, h omega = 0.01)\n");
+  printf("  %5s %6s %7s | %-21s | %-21s | %-21s | %s\n", "T", "h", "h omega", "msvi (additive)",
+         "vi-midpoint (polar)", "imex (Cartesian)", "msvi, seed's product space");
+  static const double ts[] = {1.0, 10.0}, hs[] = {0.2, 0.1, 0.05, 0.025};
+  for (size_t i = 0; i < 2; ++i) {
+    double ar, thr;
+    if (spring_row("vi-galerkin-gauss-2", ts[i], 1e-4, &ar, &thr) != CLI_EXIT_OK)
+      return CLI_EXIT_FAILURE;
+    for (size_t j = 0; j < 4; ++j) {
+      double a1 = NAN, t1 = NAN, a2 = NAN, t2 = NAN, a3 = NAN, t3 = NAN, a4 = NAN, t4 = NAN, nw, nw2;
+      const size_t n = (size_t)llround(ts[i] / hs[j]);
+      size_t done = spring_msvi(1, ts[i], hs[j], &a1, &t1, &nw);
+      size_t done2 = spring_msvi(0, ts[i], hs[j], &a4, &t4, &nw2);
+      int r2 = spring_row("vi-midpoint", ts[i], hs[j], &a2, &t2);
+      int r3 = spring_imex(ts[i], hs[j], &a3, &t3);
+      char c1[64], c2[64], c3[64], c4[64];
+      if (done == n)
+        snprintf(c1, sizeof c1, "da %.1e dth %.1e", fabs(a1 - ar), fabs(t1 - thr));
+      else
+        snprintf(c1, sizeof c1, "Newton fails, step %zu", done);
+      snprintf(c2, sizeof c2, r2 == CLI_EXIT_OK ? "da %.1e dth %.1e" : "failed", fabs(a2 - ar),
+               fabs(t2 - thr));
+      snprintf(c3, sizeof c3, r3 == CLI_EXIT_OK ? "da %.1e dth %.1e" : "failed", fabs(a3 - ar),
+               fabs(t3 - thr));
+      if (done2 == n)
+        snprintf(c4, sizeof c4, "da %.1e dth %.1e", fabs(a4 - ar), fabs(t4 - thr));
+      else
+        snprintf(c4, sizeof c4, "Newton fails at step %zu of %zu", done2 + 1, n);
+      printf("  %5g %6g %7g | %-21s | %-21s | %-21s | %s\n", ts[i], hs[j], 100.0 * hs[j], c1,
+             c2, c3, c4);
+      (void)nw;
+      (void)nw2;
+    }
+  }
+  printf("MsFEM (seed 001 5.7.1): (a(x/eps) u')' = x^2, a = 10/(1 + 0.95 sin 2 pi y), eps = 0.025;\n"
+         "  l-infinity nodal error (max |u| = 3.9e-3)\n  %6s %8s %12s %12s\n",
+         "N", "h/eps", "MsFEM", "P1");
+  static const size_t ns[] = {4, 10, 37, 64, 160, 400, 1600};
+  double exact_nodes[1601], u[1601];
+  for (size_t i = 0; i < sizeof ns / sizeof ns[0]; ++i) {
+    const size_t n = ns[i];
+    double e[2];
+    for (int ms = 1; ms >= 0; --ms) {
+      gm_error err = {{0}};
+      const size_t n_sub = (size_t)ceil(4.0 / (0.025 * (double)n));
+      if (gm_msfem_1d(msfem_a, msfem_f, NULL, n, ms, n_sub, u, &err) != GM_OK) {
+        cli_error(CMD, "%s", err.message);
+        return CLI_EXIT_FAILURE;
+      }
+      if (ms == 1) memcpy(exact_nodes, u, (n + 1) * sizeof *u); /* MsFEM nodes are exact */
+      e[ms] = 0.0;
+      for (size_t k = 0; k <= n; ++k) e[ms] = fmax(e[ms], fabs(u[k] - exact_nodes[k]));
+    }
+    printf("  %6zu %8.2f %12s %12.3e\n", n, 1.0 / (0.025 * (double)n), "(reference)", e[0]);
+  }
+  printf("  (the MsFEM nodal values agree with the closed-form solution to 6.5e-17:\n"
+         "   tests/unit/test_msfem.c; here they are the reference for P1)\n");
+  return CLI_EXIT_OK;
+}
+
 static int oscillatory_main(int argc, char **argv) {
   const char *dir = "oscillatory-output";
   size_t points = 900;
@@ -533,14 +665,17 @@ static int oscillatory_main(int argc, char **argv) {
   }
   if (rc != CLI_EXIT_OK) return rc;
   if (n_positional != 1) {
-    cli_error(CMD, "which experiment? resonance, fpu, fpu-long, work-precision or all");
+    cli_error(CMD, "which experiment? resonance, fpu, fpu-long, work-precision, multiscale or all");
     return CLI_EXIT_USAGE;
   }
   const char *ex = positional[0];
   const int all = strcmp(ex, "all") == 0;
   if (!all && strcmp(ex, "resonance") != 0 && strcmp(ex, "fpu") != 0 &&
-      strcmp(ex, "fpu-long") != 0 && strcmp(ex, "work-precision") != 0) {
-    cli_error(CMD, "unknown experiment '%s': resonance, fpu, fpu-long, work-precision or all",
+      strcmp(ex, "fpu-long") != 0 && strcmp(ex, "work-precision") != 0 &&
+      strcmp(ex, "multiscale") != 0) {
+    cli_error(CMD,
+              "unknown experiment '%s': resonance, fpu, fpu-long, work-precision, multiscale or "
+              "all",
               ex);
     return CLI_EXIT_USAGE;
   }
@@ -559,6 +694,7 @@ static int oscillatory_main(int argc, char **argv) {
     rc = experiment_fpu(dir, !no_plot, 1);
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "work-precision") == 0))
     rc = experiment_work_precision(dir, !no_plot);
+  if (rc == CLI_EXIT_OK && (all || strcmp(ex, "multiscale") == 0)) rc = experiment_multiscale();
   return rc;
 }
 
