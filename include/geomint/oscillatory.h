@@ -9,6 +9,8 @@
  * quadratic part W = ½ qᵀΩ²q with Ω symmetric positive semidefinite, given as a matrix or a
  * diagonal. Ω (with the mass) is eigendecomposed once, when the integrator is created (LAPACK
  * dsyev); the filter values f(hν_k) are recomputed only when the step size changes.
+ * gm_stats.force_evals counts the evaluations of ∇U; those of the fast part (Ω²q or ∇W, n per
+ * step in the impulse rows) are not counted.
  *
  * Multiscale tools (seed 001 §5.7): Filon–Lobatto quadrature of oscillatory integrands and the
  * 1-D multiscale finite element method. */
