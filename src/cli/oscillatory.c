@@ -221,6 +221,7 @@ typedef struct {
   const double *reference; /* NULL for the reference run */
   double max_dev;          /* max over samples and j of |I_j − I_j^ref| */
   double at150[4];
+  double t_exchange;       /* first sample time with I3 > 0.5: the energy exchange time scale */
 } fpu_trace;
 
 static int fpu_observe(void *ctx, size_t step, double t, const double *y) {
@@ -233,6 +234,7 @@ static int fpu_observe(void *ctx, size_t step, double t, const double *y) {
   tr->max_dh = fmax(tr->max_dh, dh);
   tr->max_di = fmax(tr->max_di, fabs(v[3] - tr->i0));
   if (fabs(t - 150.0) < 1e-6) memcpy(tr->at150, v, sizeof v);
+  if (v[2] > 0.5 && !(tr->t_exchange >= 0.0)) tr->t_exchange = t;
   if (tr->n_samples < tr->cap) {
     double *s = tr->samples + 4 * tr->n_samples;
     if (tr->reference != NULL) {
@@ -333,11 +335,12 @@ static int experiment_fpu(const char *dir, int plot, int long_run) {
   static char csv[8][4096];
   printf("%s (seed 000 Fig %s): FPU l = 3, omega = 50, T = %g; I = I1 + I2 + I3, I(0) = 1\n",
          name, long_run ? "2.3" : "2.2", t_end);
-  printf("  %-24s %7s %12s %12s %14s   %s\n", "method", "h", "max |dH|", "max |dI|",
-         "max |Ij - ref|", "I1, I2, I3 at t = 150");
+  printf("  %-24s %7s %11s %11s %14s %9s   %s\n", "method", "h", "max |dH|", "max |dI|",
+         "max |Ij - ref|", "t(I3>.5)", "I1, I2, I3 at t = 150");
   for (size_t k = 0; k < n_runs && rc == CLI_EXIT_OK; ++k) {
     snprintf(csv[k], sizeof csv[k], "%s/%s-%s-%g.csv", dir, name, runs[k].method, runs[k].h);
     fpu_trace tr = {0};
+    tr.t_exchange = NAN;
     tr.samples = k == 0 ? ref : scratch;
     tr.cap = cap;
     tr.reference = k == 0 ? NULL : ref;
@@ -345,8 +348,8 @@ static int experiment_fpu(const char *dir, int plot, int long_run) {
     if (rc != CLI_EXIT_OK) break;
     char dev[32];
     snprintf(dev, sizeof dev, k == 0 ? "(reference)" : "%.3e", tr.max_dev);
-    printf("  %-24s %7g %12.3e %12.3e %14s   %.3f %.3f %.3f\n", runs[k].method, runs[k].h,
-           tr.max_dh, tr.max_di, dev, tr.at150[0], tr.at150[1], tr.at150[2]);
+    printf("  %-24s %7g %11.3e %11.3e %14s %9.1f   %.3f %.3f %.3f\n", runs[k].method, runs[k].h,
+           tr.max_dh, tr.max_di, dev, tr.t_exchange, tr.at150[0], tr.at150[1], tr.at150[2]);
   }
   free(ref);
   free(scratch);

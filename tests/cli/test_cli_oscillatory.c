@@ -39,9 +39,13 @@ Test(oscillatory, fpu_matches_the_seed_notes) {
   cr_expect(strstr(r.out, "0.013 0.027 0.957") != NULL, "%s", r.out);
   const char *imex = strstr(r.out, "  imex                         0.1");
   cr_assert_not_null(imex, "%s", r.out);
-  double h, dh, di, dev, i1, i2, i3;
-  cr_assert_eq(sscanf(imex, " imex %lf %lf %lf %lf %lf %lf %lf", &h, &dh, &di, &dev, &i1, &i2, &i3),
-               7, "%s", imex);
+  double h, dh, di, dev, tx, i1, i2, i3;
+  cr_assert_eq(sscanf(imex, " imex %lf %lf %lf %lf %lf %lf %lf %lf", &h, &dh, &di, &dev, &tx, &i1,
+                      &i2, &i3),
+               8, "%s", imex);
+  /* the energy exchange time scale: I3 first above 0.5 at t = 101.4 in the reference */
+  cr_expect(strstr(r.out, "(reference)     101.4") != NULL, "%s", r.out);
+  cr_expect(fabs(tx - 101.4) < 10.0, "imex h = 0.1: exchange at t = %g", tx);
   cr_expect(dh < 0.025 && di < 0.1, "imex h = 0.1: max |dH| %g, max |dI| %g", dh, di);
   cr_expect(fabs(i1 - 0.017) < 2e-3 && fabs(i3 - 0.968) < 2e-3, "%g %g %g", i1, i2, i3);
   const char *verlet = strstr(r.out, "  verlet                      0.03");
