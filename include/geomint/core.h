@@ -106,6 +106,18 @@ gm_status gm_gauss_lobatto(size_t n, double *nodes, double *weights);
 /* Map a rule on [-1, 1] to [a, b] in place. */
 void gm_quadrature_map(size_t n, double a, double b, double *nodes, double *weights);
 
+/* Filon–Lobatto quadrature of oscillatory integrals (Iserles & Nørsett 2005; seed 001 §5.7):
+ *   ∫_0^1 f(x) e^{iκx} dx ≈ Σ_k (b_re[k] + i b_im[k]) f(c_k),   b_k = ∫_0^1 l_k(x) e^{iκx} dx,
+ * c_k the n Gauss–Lobatto nodes on [0, 1] (written), l_k their Lagrange polynomials. Exact for
+ * f a polynomial of degree n − 1, for every κ. 2 ≤ n ≤ 8 (GM_EINVAL otherwise). The weights come
+ * from a 40-point Gauss–Legendre rule for |κ| ≤ 20 and from the moment recurrence of
+ * ∫ y^j e^{iθy} on [−1, 1] above, where it is stable. */
+gm_status gm_filon_lobatto_weights(size_t n, double kappa, double *nodes, double *b_re,
+                                   double *b_im);
+/* ∫_a^b f(t) e^{iωt} dt by one n-point Filon–Lobatto panel; real and imaginary parts. */
+gm_status gm_filon_lobatto(size_t n, double a, double b, double omega,
+                           double (*f)(void *ctx, double t), void *ctx, double *re, double *im);
+
 /* ---- Lagrange bases on arbitrary nodes ------------------------------------------------- */
 
 /* Barycentric weights w_j = 1 / prod_{k != j}(x_j - x_k) of n distinct nodes.

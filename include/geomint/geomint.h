@@ -14,6 +14,7 @@
 #include "geomint/variational.h"
 #include "geomint/fields.h"
 #include "geomint/lie.h"
+#include "geomint/oscillatory.h"
 
 #define GM_VERSION_MAJOR 0
 #define GM_VERSION_MINOR 1

@@ -21,12 +21,14 @@ typedef enum gm_method_family {
   GM_FAMILY_DISCRETE_GRADIENT, /* y1 = y0 + h S ∇̄H(y0, y1): energy-preserving, Poisson systems */
   GM_FAMILY_VARIATIONAL,     /* discrete Euler–Lagrange equations of a discrete Lagrangian
                                 (geomint/variational.h) */
-  GM_FAMILY_LIE_GROUP        /* rigid bodies on SO(3) (× R³): Lie group variational integrators,
+  GM_FAMILY_LIE_GROUP,       /* rigid bodies on SO(3) (× R³): Lie group variational integrators,
                                 RKMK, Crouch–Grossman, body-axis splitting (geomint/lie.h) */
+  GM_FAMILY_OSCILLATORY      /* split potentials U + W: IMEX, impulse, trigonometric
+                                (geomint/oscillatory.h) */
 } gm_method_family;
 
 /* "explicit-rk", "splitting", "implicit-rk", "composition", "partitioned-rk", "mimetic",
- * "discrete-gradient", "variational", "lie-group" */
+ * "discrete-gradient", "variational", "lie-group", "oscillatory" */
 const char *gm_method_family_name(gm_method_family family);
 
 enum {

@@ -146,6 +146,10 @@ typedef struct gm_problem {
   size_t n_invariants;
   const gm_invariant *invariants;                 /* borrowed, n_invariants entries */
   int (*exact)(void *ctx, double t, double *y);   /* exact solution from the initial state */
+
+  /* optional, separable: the potential split V = U + W (slow + fast) that the oscillatory
+   * rows need; borrowed (geomint/oscillatory.h) */
+  const struct gm_split_potential *split;
 } gm_problem;
 
 /* Length of the state vector: dim (first order, Poisson) or 2·dim (Hamiltonian kinds,

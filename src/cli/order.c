@@ -12,8 +12,9 @@ static const char usage[] =
     "usage: geomint order [PROBLEM] --method NAME [--basic NAME] [--solver NAME] [--dt H0]\n"
     "                     [--t-end T] [--levels L] [--ratio R] [--reference NAME]\n"
     "                     [--set name=value ...] [--json] [--quiet]\n\n"
-    "Measure the order of a method: integrate PROBLEM (default: kepler with e = 0.1) to T with\n"
-    "steps H0,\n"
+    "Measure the order of a method: integrate PROBLEM (default: kepler with e = 0.1, or for\n"
+    "methods of other kinds the first of heavy-top, rigid-body, toy-resonance and\n"
+    "outer-solar-system they integrate) to T with steps H0,\n"
     "H0/R, ..., H0/R^(L-1) and fit log(error) against log(dt) over the levels whose error lies\n"
     "in the asymptotic window of the method's declared order p (relative to max(1, |y0|):\n"
     "from 10^-(p+2), clamped to [1e-7, 1e-3], down at most 2p decades and not below 1e-12).\n"
@@ -40,6 +41,35 @@ static const char usage[] =
  * orders ≥ 10 reaches into the window (sofroniou-spaletta-10 measures 10.9 there, the Gauss
  * rows of order 12 measure 12.9); near-circular orbits have smaller high derivatives. */
 #define CLI_ORDER_DEFAULT_SETTING "e=0.1"
+
+/* Without a PROBLEM, the first of these the method can integrate: rows for other kinds
+ * (rigid bodies, split potentials, near-integrable splittings) measure on their own kind's
+ * classic problem. The lie-group rows of free bodies only (dep-s) take rigid-body. */
+static const struct {
+  const char *name, *setting;
+} default_problems[] = {{"kepler", CLI_ORDER_DEFAULT_SETTING},
+                        {"heavy-top", NULL},
+                        {"rigid-body", NULL},
+                        {"toy-resonance", NULL},
+                        {"outer-solar-system", NULL}};
+
+static int integrates(const gm_scheme *scheme, const char *name, const char *setting) {
+  gm_model *model = NULL;
+  int ok = gm_model_create(name, &model) == GM_OK;
+  if (ok && setting != NULL) {
+    char key[32];
+    const char *eq = strchr(setting, '=');
+    snprintf(key, sizeof key, "%.*s", (int)(eq - setting), setting);
+    ok = gm_model_set(model, key, strtod(eq + 1, NULL)) == GM_OK;
+  }
+  ok = ok && gm_model_build(model) == GM_OK;
+  gm_integrator *it = NULL;
+  gm_error err = {{0}};
+  ok = ok && gm_integrator_create_scheme(scheme, gm_model_problem(model), &it, &err) == GM_OK;
+  gm_integrator_free(it);
+  gm_model_free(model);
+  return ok;
+}
 
 static const char *outcome_text(int outcome) {
   switch (outcome) {
@@ -228,16 +258,6 @@ static int order_main(int argc, char **argv) {
     return CLI_EXIT_OK;
   }
   if (status != CLI_EXIT_OK) return status;
-  if (n_problem == 0) { /* the default problem: a nearly circular Kepler orbit */
-    problem[0] = "kepler";
-    if (settings.n == CLI_MAX_SETTINGS) {
-      cli_error("order", "too many --set options");
-      return CLI_EXIT_USAGE;
-    }
-    memmove(settings.items + 1, settings.items, settings.n * sizeof settings.items[0]);
-    settings.items[0] = CLI_ORDER_DEFAULT_SETTING; /* a later --set e=... overrides it */
-    settings.n++;
-  }
   if (method == NULL) {
     cli_error("order", "usage: geomint order [PROBLEM] --method NAME (see 'geomint order --help')");
     return CLI_EXIT_USAGE;
@@ -257,6 +277,23 @@ static int order_main(int argc, char **argv) {
   gm_scheme scheme;
   if ((status = cli_make_scheme("order", method, basic, solver, 0, &scheme)) != CLI_EXIT_OK)
     return status;
+  if (n_problem == 0) { /* the default problem of the method's kind (see default_problems) */
+    const size_t n_defaults = sizeof default_problems / sizeof default_problems[0];
+    size_t k = 0;
+    while (k + 1 < n_defaults &&
+           !integrates(&scheme, default_problems[k].name, default_problems[k].setting))
+      ++k;
+    problem[0] = default_problems[k].name;
+    if (default_problems[k].setting != NULL) {
+      if (settings.n == CLI_MAX_SETTINGS) {
+        cli_error("order", "too many --set options");
+        return CLI_EXIT_USAGE;
+      }
+      memmove(settings.items + 1, settings.items, settings.n * sizeof settings.items[0]);
+      settings.items[0] = default_problems[k].setting; /* a later --set overrides it */
+      settings.n++;
+    }
+  }
   const gm_method *ref = NULL;
   if (reference != NULL && (ref = cli_find_method("order", reference)) == NULL)
     return CLI_EXIT_USAGE;

@@ -35,6 +35,10 @@ extern const gm_stepper gm_sem_stepper;
 gm_status gm_vi_gauss_tableau(const gm_method *m, gm_tableau *t);
 gm_status gm_vi_lobatto_tableau(const gm_method *m, gm_tableau *t);
 gm_status gm_vi_alpha_tableau(const gm_method *m, gm_tableau *t);
+/* Oscillatory rows and their stepper (oscillatory*.c; private parts in methods/oscillatory.h). */
+extern const gm_method gm_oscillatory_methods[];
+extern const size_t gm_n_oscillatory_methods;
+extern const gm_stepper gm_oscillatory_stepper;
 
 /* Lie group rows and their stepper for rigid bodies (lie_group*.c). */
 extern const gm_method gm_lie_group_methods[];

@@ -18,6 +18,7 @@ static const table_ref tables[] = {
     {gm_discrete_gradient_methods, &gm_n_discrete_gradient_methods},
     {gm_variational_methods, &gm_n_variational_methods},
     {gm_lie_group_methods, &gm_n_lie_group_methods},
+    {gm_oscillatory_methods, &gm_n_oscillatory_methods},
 };
 static const size_t n_tables = sizeof tables / sizeof tables[0];
 
@@ -64,6 +65,8 @@ const char *gm_method_family_name(gm_method_family family) {
       return "variational";
     case GM_FAMILY_LIE_GROUP:
       return "lie-group";
+    case GM_FAMILY_OSCILLATORY:
+      return "oscillatory";
   }
   return "unknown";
 }
@@ -95,6 +98,8 @@ const gm_stepper *gm_stepper_for(const gm_method *method, const gm_method *basic
       return (method->flags & GM_ENERGY_PRESERVING) ? &gm_sem_stepper : &gm_variational_stepper;
     case GM_FAMILY_LIE_GROUP:
       return &gm_lie_group_stepper;
+    case GM_FAMILY_OSCILLATORY:
+      return &gm_oscillatory_stepper;
   }
   return NULL;
 }

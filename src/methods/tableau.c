@@ -51,6 +51,7 @@ gm_status gm_method_tableau(const gm_method *m, gm_tableau **out) {
            (t->b_bar = copy_or_zero(NULL, s));
       break;
     case GM_FAMILY_DISCRETE_GRADIENT: /* no coefficients */
+    case GM_FAMILY_OSCILLATORY:       /* filter functions, not coefficients */
       break;
     case GM_FAMILY_LIE_GROUP: /* RKMK, Crouch–Grossman: a Butcher tableau; others: none */
       if (m->a != NULL || m->compute != NULL)

@@ -325,6 +325,12 @@ gm_status gm_order_measure_window(const gm_scheme *scheme, const gm_problem *pro
   if (plan->n_levels == 1 || plan->n_levels > GM_ORDER_MAX_LEVELS)
     return gm_error_set(err, GM_EINVAL, "number of levels must be in [2, %d], got %zu",
                         GM_ORDER_MAX_LEVELS, plan->n_levels);
+  /* A scheme that cannot integrate the problem at all (another kind, a missing split or
+   * callback) is that error, not an error "above the window" at every step. */
+  gm_integrator *probe = NULL;
+  gm_status created = gm_integrator_create_scheme(scheme, problem, &probe, err);
+  gm_integrator_free(probe);
+  if (created != GM_OK) return created;
   memset(out, 0, sizeof *out);
   out->order = NAN;
   const int p = scheme->method->order;

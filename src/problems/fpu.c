@@ -29,6 +29,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "geomint/oscillatory.h"
 #include "problems/internal.h"
 
 #define FPU_MAX_SPRINGS 16
@@ -38,6 +39,10 @@ typedef struct {
   size_t n_springs;
   double omega;
   gm_invariant invariants[FPU_MAX_SPRINGS + 1];
+  /* the split V = U + W (issue 12): U the quartic soft springs, W = (ω²/2)|x₁|² = ½ qᵀΩ²q with
+   * the diagonal Ω = diag(0, ..., 0, ω, ..., ω) */
+  double omega_diag[2 * FPU_MAX_SPRINGS];
+  gm_split_potential split;
 } fpu;
 
 /* x_{0,i} and x_{1,i}, i = 0..ℓ+1, zero at the fixed ends. */
@@ -111,6 +116,43 @@ static int potential_hessian(void *ctx, const double *q, double *hessian) {
     for (size_t a = 0; a < count; ++a)
       for (size_t b = 0; b < count; ++b) hessian[index[a] * d + index[b]] += c * sign[a] * sign[b];
   }
+  return 0;
+}
+
+static double slow(void *ctx, const double *q) {
+  const fpu *f = ctx;
+  double soft = 0.0;
+  for (size_t k = 0; k <= f->n_springs; ++k) {
+    size_t index[4], count;
+    double sign[4];
+    double w = soft_spring(f, q, k, index, sign, &count), w2 = w * w;
+    soft += w2 * w2;
+  }
+  return 0.25 * soft;
+}
+
+static int slow_gradient(void *ctx, const double *q, double *out) {
+  const fpu *f = ctx;
+  memset(out, 0, f->dim * sizeof *out);
+  for (size_t k = 0; k <= f->n_springs; ++k) {
+    size_t index[4], count;
+    double sign[4];
+    double w = soft_spring(f, q, k, index, sign, &count), w3 = w * w * w;
+    for (size_t a = 0; a < count; ++a) out[index[a]] += sign[a] * w3;
+  }
+  return 0;
+}
+
+static double fast(void *ctx, const double *q) {
+  const fpu *f = ctx;
+  double s = 0.0;
+  for (size_t i = 0; i < f->n_springs; ++i) s += q[f->n_springs + i] * q[f->n_springs + i];
+  return 0.5 * f->omega * f->omega * s;
+}
+
+static int fast_gradient(void *ctx, const double *q, double *out) {
+  const fpu *f = ctx;
+  for (size_t i = 0; i < f->dim; ++i) out[i] = f->omega_diag[i] * f->omega_diag[i] * q[i];
   return 0;
 }
 
@@ -189,6 +231,10 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   pb->potential = potential;
   pb->potential_gradient = potential_gradient;
   pb->potential_hessian = potential_hessian;
+  for (size_t i = 0; i < 2 * l; ++i) f->omega_diag[i] = i < l ? 0.0 : omega;
+  f->split = (gm_split_potential){slow, slow_gradient, fast, fast_gradient, NULL, f->omega_diag,
+                                  1, NULL};
+  pb->split = &f->split;
   pb->n_invariants = l + 1;
   pb->invariants = f->invariants;
   /* q = (x0, x1), p = (y0, y1) */

@@ -80,5 +80,9 @@ extern const gm_model_def gm_model_heavy_top;
 extern const gm_model_def gm_model_pendulum_3d;
 extern const gm_model_def gm_model_satellite;
 extern const gm_model_def gm_model_central_body;
+/* split potentials U + W (issue 12) */
+extern const gm_model_def gm_model_toy_resonance;
+extern const gm_model_def gm_model_stiff_spring_pendulum;
+extern const gm_model_def gm_model_diatomic_chain;
 
 #endif

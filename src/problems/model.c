@@ -29,6 +29,9 @@ static const gm_model_def *const defs[] = {
     &gm_model_pendulum_3d,
     &gm_model_satellite,
     &gm_model_central_body,
+    &gm_model_toy_resonance,
+    &gm_model_stiff_spring_pendulum,
+    &gm_model_diatomic_chain,
 };
 static const size_t n_defs = sizeof defs / sizeof defs[0];
 

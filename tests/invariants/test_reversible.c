@@ -16,8 +16,7 @@ static double reversal_error(const gm_method *m, const test_model *tm, double h)
   return e;
 }
 
-static void check_problem(const char *name, double h) {
-  test_model tm = test_model_make(name);
+static void check_model(const char *name, test_model tm, double h) {
   for (size_t i = 0; i < gm_method_count(); ++i) {
     const gm_method *m = gm_method_at(i);
     if (!test_accepts(m, tm.problem)) continue;
@@ -33,8 +32,15 @@ static void check_problem(const char *name, double h) {
   gm_model_free(tm.model);
 }
 
+static void check_problem(const char *name, double h) { check_model(name, test_model_make(name), h); }
+
 Test(reversible, kepler) { check_problem("kepler", 0.05); }
 Test(reversible, henon_heiles) { check_problem("henon-heiles", 0.1); }
 Test(reversible, rigid_body) { check_problem("rigid-body", 1.0); }
 Test(reversible, heavy_top) { check_problem("heavy-top", 0.1); }
 Test(reversible, central_body) { check_problem("central-body", 0.1); }
+/* split potentials (issue 12) */
+Test(reversible, diatomic_chain) { check_problem("diatomic-chain", 0.05); }
+Test(reversible, stiff_spring_pendulum) {
+  check_model("stiff-spring-pendulum", test_model_with("stiff-spring-pendulum", "k", 400.0), 0.05);
+}

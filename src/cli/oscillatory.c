@@ -1,0 +1,706 @@
+/* geomint oscillatory EXPERIMENT: the experiments of seed 000 ch. 2 (Stern's thesis, Figs.
+ * 2.1–2.3; notes E1–E3) and a work–precision comparison on FPU, with the rows of the
+ * oscillatory family (issue 12): data, figures and a table. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli/cli.h"
+
+static const char usage[] =
+    "usage: geomint oscillatory EXPERIMENT [--out DIR] [--points N] [--no-plot]\n\n"
+    "Experiments with split potentials V = U + W (seed 000 ch. 2, docs/oscillatory.md):\n"
+    "  resonance       toy problem U = q^2/2, W = omega^2 q^2/2 from q = 0, p = 1: max |H - H0|\n"
+    "                  over T = 1000 with h = 0.1 against omega h / pi in (0, 4.5] (N points,\n"
+    "                  default 900), for imex and impulse (r-RESPA) with 100 substeps (Fig 2.1)\n"
+    "  fpu             FPU (l = 3, omega = 50), T = 200: the oscillatory energies I1, I2, I3 and\n"
+    "                  I for verlet h = 0.001 (reference) and h = 0.03, imex h = 0.03, 0.1, 0.15\n"
+    "                  (Fig 2.2)\n"
+    "  fpu-long        the same to T = 4000 for imex h = 0.1, the trig-* rows h = 0.1 and\n"
+    "                  vti h = 0.05 (Fig 2.3)\n"
+    "  work-precision  FPU, T = 200: error of the slow components and of I at T against the\n"
+    "                  step, for every oscillatory row, verlet and the best composition\n"
+    "  multiscale      the multiscale variational integrator on the stiff spring pendulum\n"
+    "                  (seed 001 5.7.2) against vi-midpoint and imex, and 1-D MsFEM against P1\n"
+    "                  (seed 001 5.7.1): tables only\n"
+    "  all             all of them\n"
+    "Writes CSV files and gnuplot scripts into DIR and draws PNG figures; prints a table.\n\n"
+    "options:\n"
+    "  --out DIR    output directory, created if missing (default oscillatory-output)\n"
+    "  --points N   resonance: number of values of omega h / pi (default 900)\n"
+    "  --no-plot    write the data only\n";
+
+#define CMD "oscillatory"
+
+static int make_directory(const char *dir) {
+  if (mkdir(dir, 0777) == 0 || errno == EEXIST) {
+    struct stat sb;
+    if (stat(dir, &sb) == 0 && S_ISDIR(sb.st_mode)) return CLI_EXIT_OK;
+  }
+  cli_error(CMD, "cannot create the directory '%s': %s", dir, strerror(errno));
+  return CLI_EXIT_FAILURE;
+}
+
+static int run_gnuplot_script(const char *script) {
+  char cmd[4200];
+  snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", script);
+  if (system(cmd) != 0) {
+    cli_error(CMD, "gnuplot failed on %s", script);
+    return CLI_EXIT_FAILURE;
+  }
+  return CLI_EXIT_OK;
+}
+
+static FILE *open_file(const char *path) {
+  FILE *f = fopen(path, "w");
+  if (f == NULL) cli_error(CMD, "cannot write %s: %s", path, strerror(errno));
+  return f;
+}
+
+/* Create an integrator of `method` (with `substeps` > 0 for impulse rows) at the model's
+ * initial state; prints the error. */
+static gm_integrator *start(const gm_model *model, const char *method, size_t substeps) {
+  const gm_method *m = cli_find_method(CMD, method);
+  if (m == NULL) return NULL;
+  gm_integrator *it = NULL;
+  gm_error err = {{0}};
+  if (gm_integrator_create(m, gm_model_problem(model), &it, &err) != GM_OK) {
+    cli_error(CMD, "%s: %s", method, err.message);
+    return NULL;
+  }
+  double t0, y0[64];
+  gm_model_initial_state(model, &t0, y0);
+  gm_integrator_set_state(it, t0, y0);
+  if (substeps > 0 && gm_oscillatory_set_substeps(it, substeps) != GM_OK) {
+    cli_error(CMD, "%s", gm_integrator_errmsg(it));
+    gm_integrator_free(it);
+    return NULL;
+  }
+  return it;
+}
+
+/* ---- E1: resonance ----------------------------------------------------------------------- */
+
+typedef struct {
+  const gm_problem *pb;
+  double h0, max_error;
+} energy_watch;
+
+static int watch_energy(void *ctx, size_t step, double t, const double *y) {
+  (void)step;
+  (void)t;
+  energy_watch *w = ctx;
+  double e = fabs(gm_problem_energy(w->pb, y) - w->h0);
+  if (!(e <= w->max_error)) w->max_error = e; /* NaN wins */
+  return 0;
+}
+
+/* max |H − H0| over T = 1000, h = 0.1; a run that fails (overflow) counts as +inf */
+static double resonance_error(const char *method, double omega, size_t substeps) {
+  gm_model *model = NULL;
+  if (gm_model_create("toy-resonance", &model) != GM_OK) return NAN;
+  gm_model_set(model, "omega", omega);
+  if (gm_model_build(model) != GM_OK) {
+    gm_model_free(model);
+    return NAN;
+  }
+  gm_integrator *it = start(model, method, substeps);
+  if (it == NULL) {
+    gm_model_free(model);
+    return NAN;
+  }
+  energy_watch w = {gm_model_problem(model), 0.5, 0.0};
+  gm_integrator_add_observer(it, watch_energy, &w, 1);
+  gm_status st = gm_integrator_run(it, 10000, 0.1);
+  gm_integrator_free(it);
+  gm_model_free(model);
+  return st == GM_OK && isfinite(w.max_error) ? w.max_error : INFINITY;
+}
+
+static int compare_doubles(const void *a, const void *b) {
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+static int experiment_resonance(const char *dir, size_t n_points, int plot) {
+  char csv[4096], script[4096];
+  snprintf(csv, sizeof csv, "%s/resonance.csv", dir);
+  FILE *f = open_file(csv);
+  if (f == NULL) return CLI_EXIT_FAILURE;
+  fprintf(f, "omega_h_over_pi,omega,imex,impulse_100\n");
+  double imex_min = INFINITY, imex_max = 0.0, respa_max = 0.0, respa_at = 0.0;
+  size_t respa_spikes = 0, respa_blowups = 0;
+  double spike_near[16];
+  size_t n_near = 0;
+  /* the uniform grid, refined within 0.005 of the integers 1..4, where the resonances of the
+   * impulse method are narrower than the grid */
+  static const double near[] = {-5e-3, -2e-3, -1e-3, -5e-4, -2e-4, -1e-4,
+                                1e-4,  2e-4,  5e-4,  1e-3,  2e-3,  5e-3};
+  const size_t n_near_grid = sizeof near / sizeof near[0], n_total = n_points + 4 * n_near_grid;
+  double *xs = malloc(n_total * sizeof *xs);
+  if (xs == NULL) {
+    fclose(f);
+    return CLI_EXIT_FAILURE;
+  }
+  for (size_t k = 0; k < n_points; ++k) xs[k] = 4.5 * (double)(k + 1) / (double)n_points;
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = 0; j < n_near_grid; ++j) xs[n_points + i * n_near_grid + j] = (double)(i + 1) + near[j];
+  qsort(xs, n_total, sizeof *xs, compare_doubles);
+  for (size_t k = 0; k < n_total; ++k) {
+    const double x = xs[k], omega = x * 3.14159265358979323846 / 0.1;
+    if (k > 0 && x == xs[k - 1]) continue;
+    double ei = resonance_error("imex", omega, 0), er = resonance_error("impulse", omega, 100);
+    if (isnan(ei) || isnan(er)) {
+      fclose(f);
+      free(xs);
+      return CLI_EXIT_FAILURE;
+    }
+    imex_min = fmin(imex_min, ei);
+    imex_max = fmax(imex_max, ei);
+    if (er > respa_max) {
+      respa_max = er;
+      respa_at = x;
+    }
+    if (isinf(er)) ++respa_blowups;
+    if (er > 1.0) { /* a spike: an energy error larger than H0 itself */
+      ++respa_spikes;
+      const double integer = round(x);
+      if ((n_near == 0 || spike_near[n_near - 1] != integer) && n_near < 16)
+        spike_near[n_near++] = integer;
+    }
+    fprintf(f, "%.6f,%.10g,%.6e,%.6e\n", x, omega, ei, isinf(er) ? 1e10 : er);
+  }
+  fclose(f);
+  free(xs);
+  printf("resonance (seed 000 Fig 2.1): toy problem, h = 0.1, T = 1000, %zu values of "
+         "omega h/pi in (0, 4.5] (+ %zu within 0.005 of 1, 2, 3, 4)\n",
+         n_points, 4 * n_near_grid);
+  printf("  imex:               max |H - H0| from %.4e to %.4e (ratio %.2f)\n", imex_min,
+         imex_max, imex_max / imex_min);
+  printf("  impulse (n = 100):  max |H - H0| up to %s%.3e at omega h/pi = %.4f; %zu values "
+         "above 1 (%zu blow-ups), near omega h/pi =",
+         isinf(respa_max) ? "" : "", isinf(respa_max) ? INFINITY : respa_max, respa_at,
+         respa_spikes, respa_blowups);
+  for (size_t i = 0; i < n_near; ++i) printf(" %g", spike_near[i]);
+  printf("\n  data: %s\n", csv);
+  if (!plot) return CLI_EXIT_OK;
+  snprintf(script, sizeof script, "%s/resonance.gp", dir);
+  FILE *g = open_file(script);
+  if (g == NULL) return CLI_EXIT_FAILURE;
+  fprintf(g, "set terminal pngcairo size 960,560 font ',11'\nset datafile separator ','\n"
+             "set output '%s/resonance.png'\nset grid\nset key top left\nset logscale y\n"
+             "set format y '10^{%%L}'\nset yrange [1e-5:1e11]\nset xrange [0:4.5]\n"
+             "set xlabel 'omega h / pi'\nset ylabel 'max |H - H_0| over T = 1000'\n"
+             "set title 'Resonance: U = q^2/2, W = omega^2 q^2/2, h = 0.1 (blow-ups drawn at "
+             "1e10)'\n"
+             "plot '%s' every ::1 using 1:4 with lines lw 1.2 title 'impulse / r-RESPA, 100 "
+             "substeps', '%s' every ::1 using 1:3 with lines lw 2 title 'variational IMEX'\n",
+          dir, csv, csv);
+  fclose(g);
+  return run_gnuplot_script(script);
+}
+
+/* ---- E2, E3: FPU ------------------------------------------------------------------------- */
+
+typedef struct {
+  const char *method;
+  double h;
+  const char *title;
+} fpu_run;
+
+typedef struct {
+  const gm_problem *pb;
+  FILE *csv;
+  double h0, i0;
+  double max_di, max_dh;
+  double *samples;   /* I1, I2, I3, I per sample (reference run: stored; others: compared) */
+  size_t n_samples, cap;
+  const double *reference; /* NULL for the reference run */
+  double max_dev;          /* max over samples and j of |I_j − I_j^ref| */
+  double at150[4];
+  double t_exchange;       /* first sample time with I3 > 0.5: the energy exchange time scale */
+} fpu_trace;
+
+static int fpu_observe(void *ctx, size_t step, double t, const double *y) {
+  (void)step;
+  fpu_trace *tr = ctx;
+  const gm_problem *pb = tr->pb;
+  double v[4];
+  for (size_t j = 0; j < 4; ++j) v[j] = pb->invariants[j].value(pb->ctx, y);
+  const double dh = fabs(gm_problem_energy(pb, y) - tr->h0);
+  tr->max_dh = fmax(tr->max_dh, dh);
+  tr->max_di = fmax(tr->max_di, fabs(v[3] - tr->i0));
+  if (fabs(t - 150.0) < 1e-6) memcpy(tr->at150, v, sizeof v);
+  if (v[2] > 0.5 && !(tr->t_exchange >= 0.0)) tr->t_exchange = t;
+  if (tr->n_samples < tr->cap) {
+    double *s = tr->samples + 4 * tr->n_samples;
+    if (tr->reference != NULL) {
+      for (size_t j = 0; j < 4; ++j)
+        tr->max_dev = fmax(tr->max_dev, fabs(v[j] - tr->reference[4 * tr->n_samples + j]));
+    } else {
+      memcpy(s, v, sizeof v);
+    }
+    tr->n_samples++;
+  }
+  if (tr->csv != NULL)
+    fprintf(tr->csv, "%.10g,%.10g,%.10g,%.10g,%.10g,%.6e\n", t, v[0], v[1], v[2], v[3], dh);
+  return 0;
+}
+
+/* One FPU run sampled every `sample` time units (a multiple of h). */
+static int fpu_simulate(const gm_model *model, const fpu_run *r, double t_end, double sample,
+                        const char *csv_path, fpu_trace *tr) {
+  gm_integrator *it = start(model, r->method, 0);
+  if (it == NULL) return CLI_EXIT_USAGE;
+  const gm_problem *pb = gm_model_problem(model);
+  double t0, y0[64];
+  gm_model_initial_state(model, &t0, y0);
+  tr->pb = pb;
+  tr->h0 = gm_problem_energy(pb, y0);
+  tr->i0 = pb->invariants[3].value(pb->ctx, y0);
+  tr->csv = csv_path != NULL ? open_file(csv_path) : NULL;
+  if (csv_path != NULL && tr->csv == NULL) {
+    gm_integrator_free(it);
+    return CLI_EXIT_FAILURE;
+  }
+  if (tr->csv) fprintf(tr->csv, "t,I1,I2,I3,I,abs_energy_error\n");
+  const size_t every = (size_t)llround(sample / r->h), n = (size_t)llround(t_end / r->h);
+  if (fabs((double)every * r->h - sample) > 1e-9 * sample) {
+    cli_error(CMD, "%s: h = %g does not divide the sampling interval %g", r->method, r->h,
+              sample);
+    gm_integrator_free(it);
+    if (tr->csv) fclose(tr->csv);
+    return CLI_EXIT_USAGE;
+  }
+  gm_integrator_add_observer(it, fpu_observe, tr, every);
+  gm_status st = gm_integrator_run(it, n, r->h);
+  if (st != GM_OK) cli_error(CMD, "%s h = %g: %s", r->method, r->h, gm_integrator_errmsg(it));
+  if (tr->csv) fclose(tr->csv);
+  gm_integrator_free(it);
+  return st == GM_OK ? CLI_EXIT_OK : CLI_EXIT_FAILURE;
+}
+
+static int open_fpu(gm_model **model) {
+  return cli_open_model(CMD, "fpu", &(cli_settings){0, {NULL}}, model);
+}
+
+static int fpu_figure(const char *dir, const char *name, const char *title, const fpu_run *runs,
+                      size_t n_runs, char csv[][4096], double t_end) {
+  char script[4096];
+  snprintf(script, sizeof script, "%s/%s.gp", dir, name);
+  FILE *g = open_file(script);
+  if (g == NULL) return CLI_EXIT_FAILURE;
+  const size_t rows = (n_runs + 1) / 2;
+  fprintf(g, "set terminal pngcairo size 1100,%zu font ',10'\nset datafile separator ','\n"
+             "set output '%s/%s.png'\nset multiplot layout %zu,2 title '%s'\n"
+             "set xrange [0:%g]\nset yrange [0:1.5]\nset key top right horizontal\n",
+          260 * rows + 40, dir, name, rows, title, t_end);
+  for (size_t k = 0; k < n_runs; ++k)
+    fprintf(g, "set title '%s'\nplot '%s' every ::1 using 1:2 with lines title 'I_1', '' every "
+               "::1 using 1:3 with lines title 'I_2', '' every ::1 using 1:4 with lines title "
+               "'I_3', '' every ::1 using 1:5 with lines lw 1.5 lc rgb 'black' title 'I'\n",
+            runs[k].title, csv[k]);
+  fprintf(g, "unset multiplot\n");
+  fclose(g);
+  return run_gnuplot_script(script);
+}
+
+static int experiment_fpu(const char *dir, int plot, int long_run) {
+  static const fpu_run short_runs[] = {
+      {"verlet", 0.001, "Verlet h = 0.001 (reference)"}, {"verlet", 0.03, "Verlet h = 0.03"},
+      {"imex", 0.03, "IMEX h = 0.03"},                   {"imex", 0.1, "IMEX h = 0.1"},
+      {"imex", 0.15, "IMEX h = 0.15"},                   {"imex", 0.2, "IMEX h = 0.2"}};
+  static const fpu_run long_runs[] = {
+      {"verlet", 0.001, "Verlet h = 0.001 (reference)"},
+      {"imex", 0.1, "IMEX h = 0.1"},
+      {"trig-gautschi", 0.1, "trig-gautschi h = 0.1"},
+      {"trig-deuflhard", 0.1, "trig-deuflhard h = 0.1"},
+      {"trig-garcia-archilla", 0.1, "trig-garcia-archilla h = 0.1"},
+      {"trig-hochbruck-lubich", 0.1, "trig-hochbruck-lubich h = 0.1"},
+      {"trig-hairer-lubich", 0.1, "trig-hairer-lubich h = 0.1"},
+      {"vti", 0.05, "vti h = 0.05"}};
+  const fpu_run *runs = long_run ? long_runs : short_runs;
+  const size_t n_runs = long_run ? sizeof long_runs / sizeof long_runs[0]
+                                 : sizeof short_runs / sizeof short_runs[0];
+  const double t_end = long_run ? 4000.0 : 200.0, sample = long_run ? 1.0 : 0.6;
+  const char *name = long_run ? "fpu-long" : "fpu";
+  gm_model *model = NULL;
+  int rc = open_fpu(&model);
+  if (rc != CLI_EXIT_OK) return rc;
+  const size_t cap = (size_t)(t_end / sample) + 2;
+  double *ref = calloc(4 * cap, sizeof *ref), *scratch = calloc(4 * cap, sizeof *scratch);
+  static char csv[8][4096];
+  printf("%s (seed 000 Fig %s): FPU l = 3, omega = 50, T = %g; I = I1 + I2 + I3, I(0) = 1\n",
+         name, long_run ? "2.3" : "2.2", t_end);
+  printf("  %-24s %7s %11s %11s %14s %9s   %s\n", "method", "h", "max |dH|", "max |dI|",
+         "max |Ij - ref|", "t(I3>.5)", "I1, I2, I3 at t = 150");
+  for (size_t k = 0; k < n_runs && rc == CLI_EXIT_OK; ++k) {
+    snprintf(csv[k], sizeof csv[k], "%s/%s-%s-%g.csv", dir, name, runs[k].method, runs[k].h);
+    fpu_trace tr = {0};
+    tr.t_exchange = NAN;
+    tr.samples = k == 0 ? ref : scratch;
+    tr.cap = cap;
+    tr.reference = k == 0 ? NULL : ref;
+    rc = fpu_simulate(model, &runs[k], t_end, sample, csv[k], &tr);
+    if (rc != CLI_EXIT_OK) break;
+    char dev[32];
+    snprintf(dev, sizeof dev, k == 0 ? "(reference)" : "%.3e", tr.max_dev);
+    printf("  %-24s %7g %11.3e %11.3e %14s %9.1f   %.3f %.3f %.3f\n", runs[k].method, runs[k].h,
+           tr.max_dh, tr.max_di, dev, tr.t_exchange, tr.at150[0], tr.at150[1], tr.at150[2]);
+  }
+  free(ref);
+  free(scratch);
+  gm_model_free(model);
+  if (rc != CLI_EXIT_OK || !plot) return rc;
+  return fpu_figure(dir, name,
+                    long_run ? "FPU, T = 4000: oscillatory energies"
+                             : "FPU, T = 200: oscillatory energies",
+                    runs, n_runs, csv, t_end);
+}
+
+/* ---- work–precision on FPU --------------------------------------------------------------- */
+
+/* Averages of I over the blocks [2k, 2k + 2) of T = 200: I oscillates by O(1/ω) about its
+ * slow evolution, with the phase of the fast oscillation, which no method with a large step
+ * reproduces; its block averages are what a long step can and should get right. */
+#define WP_BLOCKS 100
+typedef struct {
+  const gm_problem *pb;
+  double sum[WP_BLOCKS];
+  size_t count[WP_BLOCKS];
+} block_average;
+
+static int average_i(void *ctx, size_t step, double t, const double *y) {
+  (void)step;
+  block_average *b = ctx;
+  long k = (long)floor(t / 2.0 + 1e-9);
+  if (k >= 0 && k < WP_BLOCKS) {
+    b->sum[k] += b->pb->invariants[3].value(b->pb->ctx, y);
+    b->count[k]++;
+  }
+  return 0;
+}
+
+/* State at T = 200 and the block averages of I; returns 0 when the run failed. */
+static int fpu_final(const gm_model *model, const char *method, double h, double *y,
+                     double *means, gm_stats *stats) {
+  gm_integrator *it = start(model, method, 0);
+  if (it == NULL) return 0;
+  block_average b;
+  memset(&b, 0, sizeof b);
+  b.pb = gm_model_problem(model);
+  gm_integrator_add_observer(it, average_i, &b, 1);
+  gm_status st = gm_integrator_run(it, (size_t)llround(200.0 / h), h);
+  if (st == GM_OK) memcpy(y, gm_integrator_state(it), 12 * sizeof *y);
+  for (size_t k = 0; k < WP_BLOCKS; ++k) means[k] = b.count[k] ? b.sum[k] / (double)b.count[k] : NAN;
+  *stats = gm_integrator_stats(it);
+  gm_integrator_free(it);
+  return st == GM_OK;
+}
+
+static int experiment_work_precision(const char *dir, int plot) {
+  static const char *const rows[] = {"imex",
+                                     "impulse",
+                                     "mollified-impulse-sinc",
+                                     "trig-gautschi",
+                                     "trig-deuflhard",
+                                     "trig-garcia-archilla",
+                                     "trig-hochbruck-lubich",
+                                     "trig-hairer-lubich",
+                                     "vti",
+                                     "verlet",
+                                     "blanes-moan-4",
+                                     "yoshida-4",
+                                     "suzuki-4",
+                                     "kahan-li-6",
+                                     "blanes-moan-6"};
+  enum { N_ROWS = sizeof rows / sizeof rows[0], N_OSC = 9, N_H = 12 };
+  /* steps 200/n: from 0.25 down to 0.0005 */
+  static const double hs[N_H] = {0.25, 0.2, 0.16, 0.125, 0.1, 0.08, 0.05, 0.025, 0.01, 0.005,
+                                 0.002, 0.001};
+  gm_model *model = NULL;
+  int rc = open_fpu(&model);
+  if (rc != CLI_EXIT_OK) return rc;
+  const gm_problem *pb = gm_model_problem(model);
+  double ref[12], ref_means[WP_BLOCKS];
+  gm_stats stats;
+  if (!fpu_final(model, "blanes-moan-6", 0.0002, ref, ref_means, &stats)) {
+    gm_model_free(model);
+    return CLI_EXIT_FAILURE;
+  }
+  const double i_ref = pb->invariants[3].value(pb->ctx, ref); /* I(T) */
+  char csv[4096];
+  snprintf(csv, sizeof csv, "%s/work-precision.csv", dir);
+  FILE *f = open_file(csv);
+  if (f == NULL) {
+    gm_model_free(model);
+    return CLI_EXIT_FAILURE;
+  }
+  fprintf(f, "method,h,slow_error,I_error,I_T_error,force_evals\n");
+  printf("work-precision: FPU (l = 3, omega = 50), T = 200, against blanes-moan-6 h = 0.0002;\n"
+         "  I error = max over the blocks [2k, 2k+2) of |mean I - mean I_ref|; I(T) error =\n"
+         "  |I(T) - I_ref(T)|; slow error = max |x0, y0 - ref| at T. Verlet's stability limit\n"
+         "  2/omega = 0.04, 5x that = 0.2\n");
+  printf("  %-24s %9s %8s %11s %11s %11s %10s\n", "method", "largest h", "h/(2/w)", "I err",
+         "I(T) err", "slow err", "evals/step");
+  double best_h_comp = 0.0;
+  const char *best_comp = NULL;
+  double best_evals = INFINITY;
+  for (size_t r = 0; r < N_ROWS; ++r) {
+    double largest = 0.0, i_err_there = NAN, it_there = NAN, slow_there = NAN, evals = NAN;
+    for (size_t k = 0; k < N_H; ++k) {
+      double y[12], means[WP_BLOCKS];
+      double slow = INFINITY, ierr = INFINITY, iterr = INFINITY;
+      if (fpu_final(model, rows[r], hs[k], y, means, &stats)) {
+        slow = ierr = 0.0;
+        for (size_t i = 0; i < 3; ++i)
+          slow = fmax(slow, fmax(fabs(y[i] - ref[i]), fabs(y[6 + i] - ref[6 + i])));
+        for (size_t b = 0; b < WP_BLOCKS; ++b) ierr = fmax(ierr, fabs(means[b] - ref_means[b]));
+        iterr = fabs(pb->invariants[3].value(pb->ctx, y) - i_ref);
+        if (!isfinite(slow) || !isfinite(ierr) || !isfinite(iterr))
+          slow = ierr = iterr = INFINITY;
+      }
+      fprintf(f, "%s,%g,%.6e,%.6e,%.6e,%zu\n", rows[r], hs[k], isinf(slow) ? 1e10 : slow,
+              isinf(ierr) ? 1e10 : ierr, isinf(iterr) ? 1e10 : iterr, stats.force_evals);
+      if (ierr <= 1e-2 && hs[k] > largest) {
+        largest = hs[k];
+        i_err_there = ierr;
+        it_there = iterr;
+        slow_there = slow;
+        evals = (double)stats.force_evals / (200.0 / hs[k]);
+      }
+    }
+    if (r >= N_OSC + 1 && largest > 0.0) { /* compositions: fewest evaluations */
+      double total = evals * 200.0 / largest;
+      if (total < best_evals) {
+        best_evals = total;
+        best_comp = rows[r];
+        best_h_comp = largest;
+      }
+    }
+    printf("  %-24s %9g %8.2f %11.3e %11.3e %11.3e %10.0f\n", rows[r], largest, largest / 0.04,
+           i_err_there, it_there, slow_there, evals);
+  }
+  fclose(f);
+  gm_model_free(model);
+  printf("  (largest h: the largest step of the grid with I error <= 1e-2)\n  best composition: %s (h = %g)\n  data: %s\n",
+         best_comp ? best_comp : "none", best_h_comp, csv);
+  if (!plot) return CLI_EXIT_OK;
+  char script[4096];
+  snprintf(script, sizeof script, "%s/work-precision.gp", dir);
+  FILE *g = open_file(script);
+  if (g == NULL) return CLI_EXIT_FAILURE;
+  fprintf(g, "set terminal pngcairo size 1200,520 font ',10'\nset datafile separator ','\n"
+             "set output '%s/work-precision.png'\nset multiplot layout 1,2 title 'FPU (omega = "
+             "50), T = 200: error against step size'\n"
+             "set logscale xy\nset grid\nset xlabel 'h'\nset format y '10^{%%L}'\n"
+             "set yrange [1e-8:10]\nset key bottom right font ',8'\n"
+             "set arrow from 0.04, graph 0 to 0.04, graph 1 nohead dt 2\n"
+             "set arrow from 0.2, graph 0 to 0.2, graph 1 nohead dt 3\n",
+          dir);
+  for (int panel = 0; panel < 2; ++panel) {
+    fprintf(g, "set title '%s (dashed: 2/omega and 5 x 2/omega)'\nset ylabel '%s'\nplot ",
+            panel == 0 ? "I, block averages over 2 time units" : "slow components at T",
+            panel == 0 ? "max |mean I - mean I_ref|" : "max |x0, y0 - ref|");
+    for (size_t r = 0; r < N_ROWS; ++r) {
+      if (r > N_OSC && !(strcmp(rows[r], "verlet") == 0 ||
+                         (best_comp && strcmp(rows[r], best_comp) == 0)))
+        continue;
+      fprintf(g, "%s'%s' using (strcol(1) eq '%s' ? $2 : 1/0):%d with linespoints %s title '%s'",
+              r ? ", " : "", csv, rows[r], panel == 0 ? 4 : 3,
+              r == N_OSC ? "lw 2.5 dt 2 lc rgb 'gray40'"
+                         : (r > N_OSC ? "lw 2.5 lc rgb 'black'" : "lw 1.2"),
+              rows[r]);
+    }
+    fprintf(g, "\n");
+  }
+  fprintf(g, "unset multiplot\n");
+  fclose(g);
+  return run_gnuplot_script(script);
+}
+
+/* ---- multiscale: the multiscale VI on the stiff spring pendulum, MsFEM in 1-D -------------- */
+
+/* θ(T) and a(T) of the stiff spring pendulum (seed 001 §5.7.2 defaults, θ0 = 1, at rest at the
+ * static stretch) by a polar-coordinate integrator row of the model spring-pendulum */
+static int spring_row(const char *method, double t_end, double h, double *a, double *theta) {
+  gm_model *model = NULL;
+  int rc = cli_open_model(CMD, "spring-pendulum", &(cli_settings){0, {NULL}}, &model);
+  if (rc != CLI_EXIT_OK) return rc;
+  gm_integrator *it = start(model, method, 0);
+  gm_status st = it ? gm_integrator_integrate(it, t_end, h) : GM_EINVAL;
+  if (st == GM_OK) {
+    *a = gm_integrator_state(it)[0];
+    *theta = gm_integrator_state(it)[1];
+  }
+  gm_integrator_free(it);
+  gm_model_free(model);
+  return st == GM_OK ? CLI_EXIT_OK : CLI_EXIT_FAILURE;
+}
+
+/* the same by imex on the Cartesian split form (stiff-spring-pendulum) */
+static int spring_imex(double t_end, double h, double *a, double *theta) {
+  gm_model *model = NULL;
+  int rc = cli_open_model(CMD, "stiff-spring-pendulum", &(cli_settings){0, {NULL}}, &model);
+  if (rc != CLI_EXIT_OK) return rc;
+  gm_integrator *it = start(model, "imex", 0);
+  gm_status st = it ? gm_integrator_integrate(it, t_end, h) : GM_EINVAL;
+  if (st == GM_OK) {
+    const double *y = gm_integrator_state(it);
+    *a = hypot(y[0], y[1]) - 1.0;
+    *theta = atan2(y[0], -y[1]);
+  }
+  gm_integrator_free(it);
+  gm_model_free(model);
+  return st == GM_OK ? CLI_EXIT_OK : CLI_EXIT_FAILURE;
+}
+
+/* msvi from the same initial state; returns the step index that failed, or n_steps */
+static size_t spring_msvi(int additive, double t_end, double h, double *a, double *theta,
+                          double *newton) {
+  gm_msvi_options o = gm_msvi_defaults();
+  o.additive = additive;
+  gm_msvi *vi = NULL;
+  if (gm_msvi_create(&o, &vi, NULL) != GM_OK) return 0;
+  double q[2] = {o.m * o.g / o.k, 1.0}, p[2] = {0.0, 0.0};
+  const size_t n = (size_t)llround(t_end / h);
+  size_t k = 0, its = 0;
+  for (; k < n; ++k) {
+    if (gm_msvi_step(vi, h, q, p) != GM_OK) break;
+    its += gm_msvi_newton_iterations(vi);
+  }
+  *a = q[0];
+  *theta = q[1];
+  *newton = k ? (double)its / (double)k : NAN;
+  gm_msvi_free(vi);
+  return k;
+}
+
+static double msfem_a(void *ctx, double x) {
+  (void)ctx;
+  return 10.0 / (1.0 + 0.95 * sin(2.0 * 3.14159265358979323846 * x / 0.025));
+}
+static double msfem_f(void *ctx, double x) {
+  (void)ctx;
+  return x * x;
+}
+
+static int experiment_multiscale(void) {
+  printf("multiscale VI (seed 001 5.7.2): stiff spring pendulum m = 1, g = 9.81, k = 1e4, l = 1,\n"
+         "  theta0 = 1 at rest; fast period 2 pi/100 = 0.063; errors at T against\n"
+         "  vi-galerkin-gauss-2 with h = 1e-4 (4th order, h omega = 0.01)\n");
+  printf("  %5s %6s %7s | %-21s | %-21s | %-21s | %s\n", "T", "h", "h omega", "msvi (additive)",
+         "vi-midpoint (polar)", "imex (Cartesian)", "msvi, seed's product space");
+  static const double ts[] = {1.0, 10.0}, hs[] = {0.2, 0.1, 0.05, 0.025};
+  for (size_t i = 0; i < 2; ++i) {
+    double ar, thr;
+    if (spring_row("vi-galerkin-gauss-2", ts[i], 1e-4, &ar, &thr) != CLI_EXIT_OK)
+      return CLI_EXIT_FAILURE;
+    for (size_t j = 0; j < 4; ++j) {
+      double a1 = NAN, t1 = NAN, a2 = NAN, t2 = NAN, a3 = NAN, t3 = NAN, a4 = NAN, t4 = NAN, nw, nw2;
+      const size_t n = (size_t)llround(ts[i] / hs[j]);
+      size_t done = spring_msvi(1, ts[i], hs[j], &a1, &t1, &nw);
+      size_t done2 = spring_msvi(0, ts[i], hs[j], &a4, &t4, &nw2);
+      int r2 = spring_row("vi-midpoint", ts[i], hs[j], &a2, &t2);
+      int r3 = spring_imex(ts[i], hs[j], &a3, &t3);
+      char c1[64], c2[64], c3[64], c4[64];
+      if (done == n)
+        snprintf(c1, sizeof c1, "da %.1e dth %.1e", fabs(a1 - ar), fabs(t1 - thr));
+      else
+        snprintf(c1, sizeof c1, "Newton fails, step %zu", done);
+      snprintf(c2, sizeof c2, r2 == CLI_EXIT_OK ? "da %.1e dth %.1e" : "failed", fabs(a2 - ar),
+               fabs(t2 - thr));
+      snprintf(c3, sizeof c3, r3 == CLI_EXIT_OK ? "da %.1e dth %.1e" : "failed", fabs(a3 - ar),
+               fabs(t3 - thr));
+      if (done2 == n)
+        snprintf(c4, sizeof c4, "da %.1e dth %.1e", fabs(a4 - ar), fabs(t4 - thr));
+      else
+        snprintf(c4, sizeof c4, "Newton fails at step %zu of %zu", done2 + 1, n);
+      printf("  %5g %6g %7g | %-21s | %-21s | %-21s | %s\n", ts[i], hs[j], 100.0 * hs[j], c1,
+             c2, c3, c4);
+      (void)nw;
+      (void)nw2;
+    }
+  }
+  printf("MsFEM (seed 001 5.7.1): (a(x/eps) u')' = x^2, a = 10/(1 + 0.95 sin 2 pi y), eps = 0.025;\n"
+         "  l-infinity nodal error (max |u| = 3.9e-3)\n  %6s %8s %12s %12s\n",
+         "N", "h/eps", "MsFEM", "P1");
+  static const size_t ns[] = {4, 10, 37, 64, 160, 400, 1600};
+  double exact_nodes[1601], u[1601];
+  for (size_t i = 0; i < sizeof ns / sizeof ns[0]; ++i) {
+    const size_t n = ns[i];
+    double e[2];
+    for (int ms = 1; ms >= 0; --ms) {
+      gm_error err = {{0}};
+      const size_t n_sub = (size_t)ceil(4.0 / (0.025 * (double)n));
+      if (gm_msfem_1d(msfem_a, msfem_f, NULL, n, ms, n_sub, u, &err) != GM_OK) {
+        cli_error(CMD, "%s", err.message);
+        return CLI_EXIT_FAILURE;
+      }
+      if (ms == 1) memcpy(exact_nodes, u, (n + 1) * sizeof *u); /* MsFEM nodes are exact */
+      e[ms] = 0.0;
+      for (size_t k = 0; k <= n; ++k) e[ms] = fmax(e[ms], fabs(u[k] - exact_nodes[k]));
+    }
+    printf("  %6zu %8.2f %12s %12.3e\n", n, 1.0 / (0.025 * (double)n), "(reference)", e[0]);
+  }
+  printf("  (the MsFEM nodal values agree with the closed-form solution to 6.5e-17:\n"
+         "   tests/unit/test_msfem.c; here they are the reference for P1)\n");
+  return CLI_EXIT_OK;
+}
+
+static int oscillatory_main(int argc, char **argv) {
+  const char *dir = "oscillatory-output";
+  size_t points = 900;
+  int no_plot = 0;
+  cli_option options[] = {{"--out", CLI_ARG_STRING, &dir, 0},
+                          {"--points", CLI_ARG_COUNT, &points, 0},
+                          {"--no-plot", CLI_ARG_FLAG, &no_plot, 0}};
+  const char *positional[1];
+  size_t n_positional = 0;
+  int rc = cli_parse(CMD, argc, argv, options, sizeof options / sizeof options[0], positional,
+                     1, &n_positional);
+  if (rc == CLI_HELP) {
+    fputs(usage, stdout);
+    return CLI_EXIT_OK;
+  }
+  if (rc != CLI_EXIT_OK) return rc;
+  if (n_positional != 1) {
+    cli_error(CMD, "which experiment? resonance, fpu, fpu-long, work-precision, multiscale or all");
+    return CLI_EXIT_USAGE;
+  }
+  const char *ex = positional[0];
+  const int all = strcmp(ex, "all") == 0;
+  if (!all && strcmp(ex, "resonance") != 0 && strcmp(ex, "fpu") != 0 &&
+      strcmp(ex, "fpu-long") != 0 && strcmp(ex, "work-precision") != 0 &&
+      strcmp(ex, "multiscale") != 0) {
+    cli_error(CMD,
+              "unknown experiment '%s': resonance, fpu, fpu-long, work-precision, multiscale or "
+              "all",
+              ex);
+    return CLI_EXIT_USAGE;
+  }
+  if (points == 0) {
+    cli_error(CMD, "--points must be at least 1");
+    return CLI_EXIT_USAGE;
+  }
+  if (!no_plot && !cli_gnuplot_available()) {
+    cli_error(CMD, "gnuplot is not installed (or not on PATH): use --no-plot for data only");
+    return CLI_EXIT_USAGE;
+  }
+  if ((rc = make_directory(dir)) != CLI_EXIT_OK) return rc;
+  if (all || strcmp(ex, "resonance") == 0) rc = experiment_resonance(dir, points, !no_plot);
+  if (rc == CLI_EXIT_OK && (all || strcmp(ex, "fpu") == 0)) rc = experiment_fpu(dir, !no_plot, 0);
+  if (rc == CLI_EXIT_OK && (all || strcmp(ex, "fpu-long") == 0))
+    rc = experiment_fpu(dir, !no_plot, 1);
+  if (rc == CLI_EXIT_OK && (all || strcmp(ex, "work-precision") == 0))
+    rc = experiment_work_precision(dir, !no_plot);
+  if (rc == CLI_EXIT_OK && (all || strcmp(ex, "multiscale") == 0)) rc = experiment_multiscale();
+  return rc;
+}
+
+const cli_command cli_oscillatory_command = {
+    CMD, "experiments with oscillatory problems: resonance, FPU, work-precision", usage,
+    oscillatory_main};
