@@ -19,12 +19,14 @@ typedef enum gm_method_family {
   GM_FAMILY_PARTITIONED_RK,  /* partitioned Runge–Kutta: one tableau for q, one for p */
   GM_FAMILY_MIMETIC,         /* mimetic spectral elements in time (seed 003; geomint/mimetic.h) */
   GM_FAMILY_DISCRETE_GRADIENT, /* y1 = y0 + h S ∇̄H(y0, y1): energy-preserving, Poisson systems */
-  GM_FAMILY_VARIATIONAL      /* discrete Euler–Lagrange equations of a discrete Lagrangian
+  GM_FAMILY_VARIATIONAL,     /* discrete Euler–Lagrange equations of a discrete Lagrangian
                                 (geomint/variational.h) */
+  GM_FAMILY_NEAR_INTEGRABLE  /* Kepler drifts and interaction kicks of a planetary system
+                                H = H_Kepler + ε H_interaction (geomint/celestial.h) */
 } gm_method_family;
 
 /* "explicit-rk", "splitting", "implicit-rk", "composition", "partitioned-rk", "mimetic",
- * "discrete-gradient", "variational" */
+ * "discrete-gradient", "variational", "near-integrable" */
 const char *gm_method_family_name(gm_method_family family);
 
 enum {

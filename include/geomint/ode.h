@@ -104,6 +104,10 @@ typedef struct gm_problem {
   size_t n_invariants;
   const gm_invariant *invariants;                 /* borrowed, n_invariants entries */
   int (*exact)(void *ctx, double t, double *y);   /* exact solution from the initial state */
+
+  /* optional, separable: "central body + perturbed orbits" (geomint/celestial.h): the masses
+   * and G of an n-body problem whose body 0 dominates, for the near-integrable rows */
+  const struct gm_celestial *celestial;           /* borrowed */
 } gm_problem;
 
 /* Length of the state vector: dim (first order, Poisson) or 2·dim (Hamiltonian kinds,

@@ -17,6 +17,7 @@ static const table_ref tables[] = {
     {gm_mimetic_methods, &gm_n_mimetic_methods},
     {gm_discrete_gradient_methods, &gm_n_discrete_gradient_methods},
     {gm_variational_methods, &gm_n_variational_methods},
+    {gm_near_integrable_methods, &gm_n_near_integrable_methods},
 };
 static const size_t n_tables = sizeof tables / sizeof tables[0];
 
@@ -61,6 +62,8 @@ const char *gm_method_family_name(gm_method_family family) {
       return "discrete-gradient";
     case GM_FAMILY_VARIATIONAL:
       return "variational";
+    case GM_FAMILY_NEAR_INTEGRABLE:
+      return "near-integrable";
   }
   return "unknown";
 }
@@ -90,6 +93,8 @@ const gm_stepper *gm_stepper_for(const gm_method *method, const gm_method *basic
       return &gm_discrete_gradient_stepper;
     case GM_FAMILY_VARIATIONAL: /* symplectic-energy-momentum rows choose their own steps */
       return (method->flags & GM_ENERGY_PRESERVING) ? &gm_sem_stepper : &gm_variational_stepper;
+    case GM_FAMILY_NEAR_INTEGRABLE:
+      return &gm_near_integrable_stepper;
   }
   return NULL;
 }

@@ -1,0 +1,175 @@
+/* The Kepler drift: the exact flow of x'' = −μ x/|x|³ over a time dt, for any conic.
+ *
+ * Universal variables (Stumpff 1959; Danby, Fundamentals of Celestial Mechanics, 2nd ed.
+ * (1988) §6.9; Rein & Tamayo, MNRAS 452 (2015) 376, §2.3). With r0 = |x0|, η = x0·v0,
+ * β = 2μ/r0 − |v0|² (= μ/a, > 0 for ellipses) and ζ = μ − β r0, the universal anomaly s of the
+ * time t solves Kepler's equation
+ *   f(s) = r0 s + η G2(s) + ζ G3(s) − t = 0,    f'(s) = r(s) = r0 + η G1 + ζ G2 > 0,
+ *   f''(s) = η G0 + ζ G1,
+ * where G_k(β, s) = s^k c_k(β s²) with the Stumpff functions c_k. f is increasing, so the root
+ * is bracketed: Halley's method, falling back to Newton's and then to bisection whenever a
+ * step would leave the bracket, cannot fail (it only narrows the bracket). Then the Gauss
+ * f and g functions give the increments (Danby eqs. 6.9.22-6.9.24, written so that the small
+ * quantities f − 1 and ġ − 1 are never formed by subtraction):
+ *   f − 1 = −μ G2/r0,  g = r0 G1 + η G2,  ḟ = −μ G1/(r r0),  ġ − 1 = −μ G2/r,
+ *   dx = (f − 1) x0 + g v0,   dv = ḟ x0 + (ġ − 1) v0.
+ * All of them are functions of s only, so a rounding error in s moves the state along the
+ * exact orbit (energy, angular momentum and Laplace–Runge–Lenz vector keep their digits).
+ * Elliptic drifts longer than a period are first reduced modulo the period. Near β = 0
+ * (parabolic) the Stumpff series are used, so nothing divides by β. */
+#include <float.h>
+#include <math.h>
+
+#include "celestial/internal.h"
+
+/* Below this |z| = |β s²| the Stumpff functions come from their series (13 terms leave a
+ * truncation below 1e-19 at |z| = 2.5); above it from sin/cos or sinh/cosh, where the only
+ * subtraction, y − sin y with |y| ≥ 1.58, loses less than two bits. */
+#define SERIES_LIMIT 2.5
+#define N_TERMS 13
+
+/* 1/k!, k = 2..27 (rounded to double) */
+static const double inverse_factorial[26] = {
+    5.00000000000000000e-01, 1.66666666666666657e-01, 4.16666666666666644e-02,
+    8.33333333333333322e-03, 1.38888888888888894e-03, 1.98412698412698413e-04,
+    2.48015873015873016e-05, 2.75573192239858925e-06, 2.75573192239858883e-07,
+    2.50521083854417202e-08, 2.08767569878681002e-09, 1.60590438368216133e-10,
+    1.14707455977297245e-11, 7.64716373181981641e-13, 4.77947733238738525e-14,
+    2.81145725434552060e-15, 1.56192069685862253e-16, 8.22063524662432950e-18,
+    4.11031762331216484e-19, 1.95729410633912626e-20, 8.89679139245057408e-22,
+    3.86817017063068413e-23, 1.61173757109611839e-24, 6.44695028438447359e-26,
+    2.47959626322479759e-27, 9.18368986379554601e-29,
+};
+
+void gm_stumpff_g(double beta, double s, double g[4]) {
+  const double z = beta * s * s;
+  if (fabs(z) < SERIES_LIMIT) {
+    /* c2 = Σ_j (−z)^j/(2j+2)!, c3 = Σ_j (−z)^j/(2j+3)!, by Horner's rule */
+    double c2 = inverse_factorial[2 * N_TERMS - 2], c3 = inverse_factorial[2 * N_TERMS - 1];
+    for (int j = N_TERMS - 2; j >= 0; --j) {
+      c2 = inverse_factorial[2 * j] - z * c2;
+      c3 = inverse_factorial[2 * j + 1] - z * c3;
+    }
+    g[2] = s * s * c2;
+    g[3] = s * s * s * c3;
+    g[1] = s - beta * g[3]; /* G1 = s c1, c1 = 1 − z c3 */
+    g[0] = 1.0 - beta * g[2];
+  } else if (beta > 0.0) {
+    const double rb = sqrt(beta), y = rb * s, sn = sin(y), half = sin(0.5 * y);
+    g[0] = cos(y);
+    g[1] = sn / rb;
+    g[2] = 2.0 * half * half / beta; /* (1 − cos y)/β without the cancellation */
+    g[3] = (y - sn) / (beta * rb);
+  } else {
+    const double nb = -beta, rb = sqrt(nb), y = rb * s, sh = sinh(y), half = sinh(0.5 * y);
+    g[0] = cosh(y);
+    g[1] = sh / rb;
+    g[2] = 2.0 * half * half / nb;
+    g[3] = (sh - y) / (nb * rb);
+  }
+}
+
+static double dot3(const double *a, const double *b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+typedef struct {
+  double r0, eta, zeta, beta, t;
+} kepler_equation;
+
+/* f(s), f'(s) = r, f''(s) */
+static void evaluate(const kepler_equation *k, double s, double *f, double *df, double *d2f) {
+  double g[4];
+  gm_stumpff_g(k->beta, s, g);
+  *f = k->r0 * s + k->eta * g[2] + k->zeta * g[3] - k->t;
+  *df = k->r0 + k->eta * g[1] + k->zeta * g[2];
+  *d2f = k->eta * g[0] + k->zeta * g[1];
+}
+
+#define MAX_ITERATIONS 200
+
+/* The root of f in the bracket [lo, hi] (f(lo) ≤ 0 ≤ f(hi) where evaluated), from s. */
+static gm_status solve(const kepler_equation *k, double s, double lo, double hi, double *root) {
+  for (int iter = 0; iter < MAX_ITERATIONS; ++iter) {
+    double f, df, d2f;
+    evaluate(k, s, &f, &df, &d2f);
+    if (f == 0.0) break;
+    if (f < 0.0)
+      lo = s;
+    else
+      hi = s; /* f > 0, or NaN: an overflowing hyperbolic step is too long */
+    if (!(f == f)) {
+      s = 0.5 * (lo + hi);
+      continue;
+    }
+    double next = s - 2.0 * f * df / (2.0 * df * df - f * d2f); /* Halley */
+    if (!(next > lo && next < hi)) next = s - f / df;            /* Newton */
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);       /* bisection */
+    if (!(next > lo && next < hi)) break; /* no double left strictly inside the bracket */
+    const double step = fabs(next - s);
+    s = next;
+    if (step <= 4.0 * DBL_EPSILON * fabs(s)) break;
+    if (iter == MAX_ITERATIONS - 1) return GM_ENOCONV;
+  }
+  *root = s;
+  return GM_OK;
+}
+
+gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double v0[3],
+                          double dx[3], double dv[3]) {
+  if (x0 == NULL || v0 == NULL || dx == NULL || dv == NULL) return GM_EINVAL;
+  if (!(mu > 0.0) || !isfinite(mu)) return GM_EINVAL;
+  if (!isfinite(dt) || !isfinite(x0[0] + x0[1] + x0[2]) || !isfinite(v0[0] + v0[1] + v0[2]))
+    return GM_EDOMAIN;
+  const double r0 = sqrt(dot3(x0, x0));
+  if (!(r0 > 0.0)) return GM_EINVAL;
+  for (int i = 0; i < 3; ++i) dx[i] = dv[i] = 0.0;
+  if (dt == 0.0) return GM_OK;
+  kepler_equation k;
+  k.r0 = r0;
+  k.eta = dot3(x0, v0);
+  k.beta = 2.0 * mu / r0 - dot3(v0, v0);
+  k.zeta = mu - k.beta * r0;
+  k.t = dt;
+  double lo, hi, s0;
+  /* s(t) = t/r0 − η t²/(2 r0³) + O(t³): the start for drifts short against the orbit */
+  const double series = dt / r0 - k.eta * dt * dt / (2.0 * r0 * r0 * r0);
+  if (k.beta > 0.0) {
+    const double rb = sqrt(k.beta), period = 2.0 * GM_PI * mu / (k.beta * rb);
+    if (fabs(k.t) >= period) k.t = fmod(k.t, period); /* the motion repeats */
+    if (k.t == 0.0) return GM_OK;
+    const double s_period = 2.0 * GM_PI / rb; /* f(±s_period) = ±period − t */
+    lo = k.t > 0.0 ? 0.0 : -s_period;
+    hi = k.t > 0.0 ? s_period : 0.0;
+    /* the mean-anomaly guess ΔE = M, i.e. s = t β/μ, for drifts of a sizeable arc */
+    s0 = fabs(k.t) * k.beta * rb / mu < 0.3 ? series : k.t * k.beta / mu;
+  } else {
+    /* unbound: double the step t/r0 until f changes sign */
+    double far = fabs(dt) / r0, f, df, d2f;
+    int n = 0;
+    for (;;) {
+      evaluate(&k, dt > 0.0 ? far : -far, &f, &df, &d2f);
+      if (dt > 0.0 ? !(f < 0.0) : !(f > 0.0)) break;
+      if (++n > 2100) return GM_EDOMAIN;
+      far *= 2.0;
+    }
+    lo = dt > 0.0 ? (n > 0 ? 0.5 * far : 0.0) : -far;
+    hi = dt > 0.0 ? far : (n > 0 ? -0.5 * far : 0.0);
+    s0 = series;
+  }
+  if (!(s0 > lo && s0 < hi)) s0 = 0.5 * (lo + hi);
+  double s;
+  gm_status st = solve(&k, s0, lo, hi, &s);
+  if (st != GM_OK) return st;
+  double g[4];
+  gm_stumpff_g(k.beta, s, g);
+  const double r = r0 + k.eta * g[1] + k.zeta * g[2];
+  const double f_1 = -mu * g[2] / r0, gg = r0 * g[1] + k.eta * g[2];
+  const double fdot = -mu * g[1] / (r * r0), gdot_1 = -mu * g[2] / r;
+  for (int i = 0; i < 3; ++i) {
+    dx[i] = f_1 * x0[i] + gg * v0[i];
+    dv[i] = fdot * x0[i] + gdot_1 * v0[i];
+  }
+  if (!isfinite(dx[0] + dx[1] + dx[2] + dv[0] + dv[1] + dv[2])) return GM_EDOMAIN;
+  return GM_OK;
+}
