@@ -43,10 +43,13 @@ static const double inverse_factorial[26] = {
 
 void gm_stumpff_g(double beta, double s, double g[4]) {
   const double z = beta * s * s;
-  if (fabs(z) < SERIES_LIMIT) {
-    /* c2 = Σ_j (−z)^j/(2j+2)!, c3 = Σ_j (−z)^j/(2j+3)!, by Horner's rule */
-    double c2 = inverse_factorial[2 * N_TERMS - 2], c3 = inverse_factorial[2 * N_TERMS - 1];
-    for (int j = N_TERMS - 2; j >= 0; --j) {
+  const double az = fabs(z);
+  if (az < SERIES_LIMIT) {
+    /* c2 = Σ_j (−z)^j/(2j+2)!, c3 = Σ_j (−z)^j/(2j+3)!, by Horner's rule, with as many terms
+     * as leave a truncation below 1e-19: |z|^N/(2N+2)! at N = 6 (|z| < 0.01), 9 (< 0.3) */
+    const int terms = az < 0.01 ? 6 : az < 0.3 ? 9 : N_TERMS;
+    double c2 = inverse_factorial[2 * terms - 2], c3 = inverse_factorial[2 * terms - 1];
+    for (int j = terms - 2; j >= 0; --j) {
       c2 = inverse_factorial[2 * j] - z * c2;
       c3 = inverse_factorial[2 * j + 1] - z * c3;
     }
@@ -88,11 +91,15 @@ static void evaluate(const kepler_equation *k, double s, double *f, double *df, 
 
 #define MAX_ITERATIONS 200
 
-/* The root of f in the bracket [lo, hi] (f(lo) ≤ 0 ≤ f(hi) where evaluated), from s. */
-static gm_status solve(const kepler_equation *k, double s, double lo, double hi, double *root) {
+/* The root of f in the bracket [lo, hi] (f(lo) ≤ 0 ≤ f(hi) where evaluated), from s; g gets
+ * G_0..G_3 at the root. The iteration stops when the next correction is below 4 ulp of s. */
+static gm_status solve(const kepler_equation *k, double s, double lo, double hi, double *root,
+                       double g[4]) {
   for (int iter = 0; iter < MAX_ITERATIONS; ++iter) {
-    double f, df, d2f;
-    evaluate(k, s, &f, &df, &d2f);
+    gm_stumpff_g(k->beta, s, g);
+    const double f = k->r0 * s + k->eta * g[2] + k->zeta * g[3] - k->t;
+    const double df = k->r0 + k->eta * g[1] + k->zeta * g[2];
+    const double d2f = k->eta * g[0] + k->zeta * g[1];
     if (f == 0.0) break;
     if (f < 0.0)
       lo = s;
@@ -103,12 +110,20 @@ static gm_status solve(const kepler_equation *k, double s, double lo, double hi,
       continue;
     }
     double next = s - 2.0 * f * df / (2.0 * df * df - f * d2f); /* Halley */
+    const double d = next - s;
+    /* Converged when the correction is rounding (4 ulp of s). It is taken all the same and
+     * the G functions evaluated there: stopping before it biases s by ~1 ulp per drift, and so
+     * does stopping after a Halley step merely small enough for cubic convergence (measured:
+     * 4 and 5 times the error of 10⁵ drifts, tests/unit/test_celestial_kepler.c). */
+    if (fabs(d) <= 4.0 * DBL_EPSILON * fabs(s)) {
+      s = next;
+      gm_stumpff_g(k->beta, s, g);
+      break;
+    }
     if (!(next > lo && next < hi)) next = s - f / df;            /* Newton */
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);       /* bisection */
     if (!(next > lo && next < hi)) break; /* no double left strictly inside the bracket */
-    const double step = fabs(next - s);
     s = next;
-    if (step <= 4.0 * DBL_EPSILON * fabs(s)) break;
     if (iter == MAX_ITERATIONS - 1) return GM_ENOCONV;
   }
   *root = s;
@@ -132,8 +147,11 @@ gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double
   k.zeta = mu - k.beta * r0;
   k.t = dt;
   double lo, hi, s0;
-  /* s(t) = t/r0 − η t²/(2 r0³) + O(t³): the start for drifts short against the orbit */
-  const double series = dt / r0 - k.eta * dt * dt / (2.0 * r0 * r0 * r0);
+  /* s(t) = t/r0 − η t²/(2 r0³) + (η²/(2 r0⁵) − ζ/(6 r0⁴)) t³ + O(t⁴), the inverse of
+   * t(s) = r0 s + η s²/2 + ζ s³/6 + O(s⁴): the start for drifts short against the orbit */
+  const double ir = 1.0 / r0, tr = dt * ir;
+  const double series =
+      tr * (1.0 + tr * (-0.5 * k.eta * ir + tr * (0.5 * k.eta * k.eta * ir * ir - k.zeta * ir / 6.0)));
   if (k.beta > 0.0) {
     const double rb = sqrt(k.beta), period = 2.0 * GM_PI * mu / (k.beta * rb);
     if (fabs(k.t) >= period) k.t = fmod(k.t, period); /* the motion repeats */
@@ -158,11 +176,9 @@ gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double
     s0 = series;
   }
   if (!(s0 > lo && s0 < hi)) s0 = 0.5 * (lo + hi);
-  double s;
-  gm_status st = solve(&k, s0, lo, hi, &s);
+  double s, g[4];
+  gm_status st = solve(&k, s0, lo, hi, &s, g);
   if (st != GM_OK) return st;
-  double g[4];
-  gm_stumpff_g(k.beta, s, g);
   const double r = r0 + k.eta * g[1] + k.zeta * g[2];
   const double f_1 = -mu * g[2] / r0, gg = r0 * g[1] + k.eta * g[2];
   const double fdot = -mu * g[1] / (r * r0), gdot_1 = -mu * g[2] / r;

@@ -46,6 +46,7 @@ typedef struct {
   double *Q_save, *V_save, *cQ_save, *cV_save; /* state before the current step */
   double *Qo, *Vo, *cQo, *cVo; /* output work: the state corrected for output */
   double *q, *grad, *accel;  /* barycentric positions, ∇V, kick acceleration */
+  double pending, pending_save; /* Kepler drift time owed by the last step (see internal_step) */
   int loaded;          /* Q, V hold the state of it->y (through C⁻¹) */
   double h_loaded;     /* the step the corrector of the loaded state was made for */
 } ni_work;
@@ -121,7 +122,7 @@ static void release(gm_integrator *it) {
 
 static void invalidate(gm_integrator *it) {
   ni_work *w = it->work;
-  if (w != NULL) w->loaded = 0, w->force_valid = 0;
+  if (w != NULL) w->loaded = 0, w->force_valid = 0, w->pending = 0.0;
 }
 
 /* x += d, compensated (GNI §VIII.5, Alg. 5.1) when c != NULL. */
@@ -269,6 +270,7 @@ static gm_status load(gm_integrator *it, const double *y, double h) {
   memset(w->cQ, 0, 3 * n * sizeof(double));
   memset(w->cV, 0, 3 * n * sizeof(double));
   w->force_valid = 0;
+  w->pending = 0.0;
   w->h_loaded = h;
   w->loaded = 1;
   if (w->traits->n_corrector > 0) {
@@ -281,10 +283,21 @@ static gm_status load(gm_integrator *it, const double *y, double h) {
   return GM_OK;
 }
 
+/* Apply the drift the last step owes to the internal state. */
+static gm_status flush(gm_integrator *it) {
+  ni_work *w = it->work;
+  if (w->pending == 0.0) return GM_OK;
+  gm_status st = drift(it, w->Q, w->V, it->compensated ? w->cQ : NULL,
+                       it->compensated ? w->cV : NULL, w->pending);
+  if (st == GM_OK) w->pending = 0.0;
+  return st;
+}
+
 /* The corrector is made for one step size: a new one re-corrects the internal state. */
 static gm_status change_step(gm_integrator *it, double h) {
   ni_work *w = it->work;
-  gm_status st = corrector(it, w->Q, w->V, w->h_loaded, 0);
+  gm_status st = flush(it);
+  if (st == GM_OK) st = corrector(it, w->Q, w->V, w->h_loaded, 0);
   if (st == GM_OK) st = corrector(it, w->Q, w->V, h, 1);
   if (st != GM_OK) {
     w->loaded = 0;
@@ -305,6 +318,10 @@ static gm_status output(gm_integrator *it, double *y_out) {
       w->Qo[i] += w->cQ[i];
       w->Vo[i] += w->cV[i];
     }
+  if (w->pending != 0.0) {
+    gm_status st = drift(it, w->Qo, w->Vo, NULL, NULL, w->pending);
+    if (st != GM_OK) return st;
+  }
   if (w->traits->n_corrector > 0) {
     const int valid = w->force_valid;
     gm_status st = corrector(it, w->Qo, w->Vo, w->h_loaded, 0);
@@ -323,20 +340,34 @@ static gm_status output(gm_integrator *it, double *y_out) {
 
 /* ---- steps ------------------------------------------------------------------------------- */
 
+/* One step of the operation list. A step that ends with a drift leaves it owed (w->pending)
+ * and the next step starts with it, merged with its own first drift: two Kepler drifts of the
+ * same orbit compose exactly, so ABA rows make one drift per step fewer. Outputs apply the
+ * owed drift to their copy of the state, so the internal state (and the run) is the same
+ * however often it is observed. */
 static gm_status internal_step(gm_integrator *it, double h) {
   ni_work *w = it->work;
   double *cQ = it->compensated ? w->cQ : NULL, *cV = it->compensated ? w->cV : NULL;
-  size_t k = 0;
+  size_t k = 0, end = w->n_ops;
   if (w->fsal && w->force_valid) { /* the first kick's acceleration is the last one's */
-    for (size_t i = 3; i < 3 * w->n; ++i) add(&w->V[i], cV ? &cV[i] : NULL, w->ops[0].coef * h * w->accel[i]);
+    for (size_t i = 3; i < 3 * w->n; ++i)
+      add(&w->V[i], cV ? &cV[i] : NULL, w->ops[0].coef * h * w->accel[i]);
     k = 1;
   }
-  for (; k < w->n_ops; ++k) {
+  const int owes = end > 1 && !w->ops[end - 1].kick;
+  if (owes) --end;
+  for (; k < end; ++k) {
     const ni_op op = w->ops[k];
-    gm_status st = op.kick ? kick(it, w->Q, w->V, cQ, cV, op.coef * h)
-                           : drift(it, w->Q, w->V, cQ, cV, op.coef * h);
+    double dt = op.coef * h;
+    if (k == 0 && !op.kick) dt += w->pending, w->pending = 0.0;
+    if (w->pending != 0.0) { /* a row that starts with a kick */
+      gm_status st = flush(it);
+      if (st != GM_OK) return st;
+    }
+    gm_status st = op.kick ? kick(it, w->Q, w->V, cQ, cV, dt) : drift(it, w->Q, w->V, cQ, cV, dt);
     if (st != GM_OK) return st;
   }
+  if (owes) w->pending += w->ops[w->n_ops - 1].coef * h;
   if (!w->fsal) w->force_valid = 0;
   return GM_OK;
 }
@@ -347,6 +378,7 @@ static void save(ni_work *w) {
   memcpy(w->V_save, w->V, bytes);
   memcpy(w->cQ_save, w->cQ, bytes);
   memcpy(w->cV_save, w->cV, bytes);
+  w->pending_save = w->pending;
 }
 
 static void restore(ni_work *w) {
@@ -355,6 +387,7 @@ static void restore(ni_work *w) {
   memcpy(w->V, w->V_save, bytes);
   memcpy(w->cQ, w->cQ_save, bytes);
   memcpy(w->cV, w->cV_save, bytes);
+  w->pending = w->pending_save;
   w->force_valid = 0;
 }
 

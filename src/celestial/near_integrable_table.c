@@ -37,6 +37,49 @@ static const double corrector17_b[] = {
     -0.006626515413876131131098039, 0.001271999661516353179663338,
     -0.0001528727104558714767264837, 0.000008669483094674716038130045};
 
+/* Blanes, Casas, Farrés, Laskar, Makazaga & Murua, Appl. Numer. Math. 68 (2013) 58-72: the
+ * symmetric ABA methods of generalized order (10,4), (8,6,4) and (10,6,4), error
+ * O(ε h^{s1} + ε² h^{s2} + ε³ h^{s3}), with 7, 7 and 8 kicks. Drift a_i then kick b_i per stage
+ * (the last stage is a drift only). Literals as printed there (40 digits), cross-checked with
+ * the transcription in REBOUND's SABA integrator; tests/unit/test_celestial.c checks that the
+ * kicks are a quadrature rule of order s1 on [0, 1] at the drift times (the ε h^{s1}
+ * conditions). */
+static const double aba864_a[] = {
+    0.0711334264982231177779387300061549964174, 0.241153427956640098736487795326289649618,
+    0.521411761772814789212136078067994229991,  -0.333698616227678005726562603400438876027,
+    -0.333698616227678005726562603400438876027, 0.521411761772814789212136078067994229991,
+    0.241153427956640098736487795326289649618,  0.0711334264982231177779387300061549964174};
+static const double aba864_b[] = {
+    0.183083687472197221961703757166430291072,   0.310782859898574869507522291054262796375,
+    -0.0265646185119588006972121379164987592663, 0.0653961422823734184559721793911134363710,
+    -0.0265646185119588006972121379164987592663, 0.310782859898574869507522291054262796375,
+    0.183083687472197221961703757166430291072,   0.0};
+static const double aba1064_a[] = {
+    0.03809449742241219545697532230863756534060, 0.1452987161169137492940200726606637497442,
+    0.2076276957255412507162056113249882065158,  0.4359097036515261592231548624010651844006,
+    -0.6538612258327867093807117373907094120024, 0.4359097036515261592231548624010651844006,
+    0.2076276957255412507162056113249882065158,  0.1452987161169137492940200726606637497442,
+    0.03809449742241219545697532230863756534060};
+static const double aba1064_b[] = {
+    0.09585888083707521061077150377145884776921,  0.2044461531429987806805077839164344779763,
+    0.2170703479789911017143385924306336714532,   -0.01737538195906509300561788011852699719871,
+    -0.01737538195906509300561788011852699719871, 0.2170703479789911017143385924306336714532,
+    0.2044461531429987806805077839164344779763,   0.09585888083707521061077150377145884776921,
+    0.0};
+static const double aba104_a[] = {
+    0.04706710064597250612947887637243678556564,  0.1847569354170881069247376193702560968574,
+    0.2827060056798362053243616565541452479160,   -0.01453004174289681837857815229683813033908,
+    -0.01453004174289681837857815229683813033908, 0.2827060056798362053243616565541452479160,
+    0.1847569354170881069247376193702560968574,   0.04706710064597250612947887637243678556564};
+static const double aba104_b[] = {
+    0.1188819173681970199453503950853885936957,  0.2410504605515015657441667865901651105675,
+    -0.2732866667053238060543113981664559460630, 0.8267085775712504407295884329818044835997,
+    -0.2732866667053238060543113981664559460630, 0.2410504605515015657441667865901651105675,
+    0.1188819173681970199453503950853885936957,  0.0};
+
+#define BCF_REF                                                                               \
+  "Blanes, Casas, Farres, Laskar, Makazaga & Murua, Appl. Numer. Math. 68 (2013) 58-72"
+
 #define LR_REF "Laskar & Robutel, Celest. Mech. Dyn. Astr. 80 (2001) 39-62"
 #define WH_REF "Wisdom & Holman, Astron. J. 102 (1991) 1528"
 #define WHT_REF                                                                               \
@@ -50,6 +93,11 @@ static const double corrector17_b[] = {
   {.name = name_, .family = GM_FAMILY_NEAR_INTEGRABLE, .order = 2, .n_stages = stages_,       \
    .flags = GM_SYMPLECTIC | GM_EXPLICIT | (flags_), .accepts = GM_PROBLEM_SEPARABLE,          \
    .compute = fn_, .description = desc, .reference = ref}
+
+#define ROW_LITERAL(name_, stages_, a_, b_, desc, ref)                                        \
+  {.name = name_, .family = GM_FAMILY_NEAR_INTEGRABLE, .order = 2, .n_stages = stages_,       \
+   .flags = GM_SYMPLECTIC | GM_EXPLICIT | GM_SYMMETRIC, .accepts = GM_PROBLEM_SEPARABLE,      \
+   .a = a_, .b = b_, .description = desc, .reference = ref}
 
 #define SABA_DESC(n_, e_)                                                                     \
   "SABA_" #n_ " of Kepler drifts and interaction kicks in Jacobi coordinates: error "          \
@@ -81,6 +129,17 @@ const gm_method gm_near_integrable_methods[] = {
     ROW("wh-c7", 2, 0, gm_saba_tableau, WHC_DESC(7), WHT_REF),
     ROW("wh-c11", 2, 0, gm_saba_tableau, WHC_DESC(11), WHT_REF),
     ROW("wh-c17", 2, 0, gm_saba_tableau, WHC_DESC(17), WHT_REF),
+    ROW_LITERAL("aba-10-4", 8, aba104_a, aba104_b,
+                "Blanes et al. ABA(10,4), 7 kicks, Jacobi: error O(eps h^10 + eps^2 h^4)",
+                BCF_REF),
+    ROW_LITERAL("aba-8-6-4", 8, aba864_a, aba864_b,
+                "Blanes et al. ABA(8,6,4), 7 kicks, Jacobi: error O(eps h^8 + eps^2 h^6 + "
+                "eps^3 h^4)",
+                BCF_REF),
+    ROW_LITERAL("aba-10-6-4", 9, aba1064_a, aba1064_b,
+                "Blanes et al. ABA(10,6,4), 8 kicks, Jacobi: error O(eps h^10 + eps^2 h^6 + "
+                "eps^3 h^4)",
+                BCF_REF),
 };
 const size_t gm_n_near_integrable_methods =
     sizeof gm_near_integrable_methods / sizeof gm_near_integrable_methods[0];
@@ -101,6 +160,9 @@ static const gm_near_integrable_traits traits[] = {
     {J, 3, corrector7_b},
     {J, 5, corrector11_b},
     {J, 8, corrector17_b},
+    {J, 0, NULL},
+    {J, 0, NULL},
+    {J, 0, NULL},
 };
 _Static_assert(sizeof traits / sizeof traits[0] ==
                    sizeof gm_near_integrable_methods / sizeof gm_near_integrable_methods[0],

@@ -105,6 +105,18 @@ static void check_planets(int planets) {
       cr_expect_geq(wh_small / small, 30, "planets=%d %s: only %.1f times better than wh",
                     planets, second[k], wh_small / small);
   }
+  /* Blanes et al.'s (10,4), (8,6,4), (10,6,4): their ε² terms are h^4 and h^6, so at ε = 1
+   * they are 1e4-1e6 times below saba-4 at 100 days, at a few times its cost per step; their
+   * exponents sit too close to round-off here to be fitted (docs/celestial.md) */
+  const char *blanes[] = {"aba-10-4", "aba-8-6-4", "aba-10-6-4"};
+  const double saba4 = error(&e0, "saba-4-jacobi", 102.4);
+  for (size_t k = 0; k < 3; ++k) {
+    double e = error(&e0, blanes[k], 102.4);
+    printf("planets=%d %s: error %.2e at h = 102.4, eps = 1 (saba-4-jacobi: %.2e)\n", planets,
+           blanes[k], e, saba4);
+    cr_expect_leq(e, saba4 / 1000, "planets=%d %s: %.3g against saba-4 %.3g", planets, blanes[k],
+                  e, saba4);
+  }
   system_t *all[] = {&e0, &e1, &e2, &e3, &e4};
   for (size_t k = 0; k < 5; ++k) gm_model_free(all[k]->model);
 }

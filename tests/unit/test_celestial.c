@@ -187,3 +187,46 @@ Test(celestial, corrector_inverse) {
   gm_integrator_free(b);
   gm_model_free(tm.model);
 }
+
+/* The ε h^{s1} conditions: to first order in ε a near-integrable step is exact iff its kicks
+ * are a quadrature rule on [0, 1] at the drift times t_k = a_1 + … + a_k, exact for
+ * polynomials of degree < s1 (Laskar & Robutel 2001, §3; Blanes et al. 2013, §2). Every row
+ * meets its s1 to round-off and fails degree s1 (so the check can fail). */
+Test(celestial, kick_quadrature_orders) {
+  static const struct {
+    const char *name;
+    int s1;
+  } rows[] = {{"wh", 2},          {"wh-dh", 2},         {"saba-2-jacobi", 4}, {"saba-3-jacobi", 6},
+              {"saba-4-jacobi", 8}, {"sbab-1-jacobi", 2}, {"sbab-2-jacobi", 4}, {"sbab-3-jacobi", 6},
+              {"sbab-4-jacobi", 8}, {"wh-c3", 2},         {"wh-c5", 2},         {"wh-c7", 2},
+              {"wh-c11", 2},        {"wh-c17", 2},        {"aba-10-4", 10},     {"aba-8-6-4", 8},
+              {"aba-10-6-4", 10}};
+  size_t checked = 0;
+  for (size_t r = 0; r < sizeof rows / sizeof rows[0]; ++r) {
+    const gm_method *m = gm_method_find(rows[r].name);
+    cr_assert_not_null(m, "%s", rows[r].name);
+    gm_tableau *t = NULL;
+    cr_assert_eq(gm_method_tableau(m, &t), GM_OK);
+    double worst = 0, at_s1 = 0, sum_a = 0;
+    for (int j = 0; j <= rows[r].s1; ++j) {
+      double q = 0, time = 0;
+      for (size_t i = 0; i < t->n_stages; ++i) {
+        time += t->a[i];
+        q += t->b[i] * pow(time, j);
+      }
+      double defect = fabs(q - 1.0 / (j + 1));
+      if (j < rows[r].s1) worst = fmax(worst, defect);
+      else at_s1 = defect;
+    }
+    for (size_t i = 0; i < t->n_stages; ++i) sum_a += t->a[i];
+    cr_expect_leq(worst, 1e-14, "%s: degree < %d defect %.2e", m->name, rows[r].s1, worst);
+    cr_expect_gt(at_s1, 1e-8, "%s: exact at degree %d too (%.2e)", m->name, rows[r].s1, at_s1);
+    cr_expect_leq(fabs(sum_a - 1), 1e-15, "%s: drifts sum to %.17g", m->name, sum_a);
+    gm_tableau_free(t);
+    ++checked;
+  }
+  size_t n_rows = 0;
+  for (size_t i = 0; i < gm_method_count(); ++i)
+    n_rows += gm_method_at(i)->family == GM_FAMILY_NEAR_INTEGRABLE;
+  cr_expect_eq(checked, n_rows, "a near-integrable row is missing from this test");
+}
