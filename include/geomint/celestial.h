@@ -1,7 +1,7 @@
 /* geomint celestial: planetary systems as near-integrable Hamiltonians (docs/celestial.md).
  *
  *   - the Kepler drift: the exact flow of one two-body problem x'' = −μ x/|x|³ for any conic,
- *     in universal variables (Stumpff functions), solved by Halley's method inside a bracket;
+ *     in universal variables (Stumpff functions), solved by Householder's fourth-order method inside a bracket;
  *   - coordinates in which H = H_Kepler + H_interaction: Jacobi (Wisdom & Holman 1991) and
  *     democratic heliocentric (Duncan, Levison & Lee 1998), with their exact transformations
  *     to and from barycentric coordinates;
