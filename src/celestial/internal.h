@@ -18,6 +18,11 @@ void gm_heliocentric_from_barycentric(size_t n, const double *m, const double *q
 void gm_heliocentric_to_barycentric(size_t n, const double *m, const double *Q, const double *P,
                                     double *q, double *p);
 
+/* gm_kepler_drift for n orbits (x, v, dx, dv: n 3-vectors; mu: n values) by the same dt, their
+ * iterations interleaved (kepler.c). Same results as n calls. */
+gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const double *x,
+                               const double *v, double *dx, double *dv);
+
 /* The Kepler part of the coordinates (system.c): μ_i of planet i's two-body problem and the
  * mass m'_i with P_i = m'_i Q̇_i (index 0: μ = 0, the total mass). */
 void gm_kepler_parameters(gm_coordinates kind, size_t n, const double *m, const double *eta,

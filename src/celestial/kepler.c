@@ -205,3 +205,88 @@ gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double
   if (!isfinite(dx[0] + dx[1] + dx[2] + dv[0] + dv[1] + dv[2])) return GM_EDOMAIN;
   return GM_OK;
 }
+
+/* Drifts of n independent orbits by the same dt (x, v, dx, dv: n 3-vectors, borrowed): each
+ * result is the one of gm_kepler_drift, but short elliptic drifts (|mean anomaly| < 0.3, the
+ * drifts of a splitting method) run their iterations side by side, so the processor overlaps
+ * the latency chains of the different orbits (divisions, the series of the G functions). Any
+ * orbit that is not such a drift, or whose iteration would leave its bracket, is handed to
+ * gm_kepler_drift. */
+#define BATCH 16
+gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const double *x,
+                               const double *v, double *dx, double *dv) {
+  for (size_t base = 0; base < n; base += BATCH) {
+    const size_t m = n - base < BATCH ? n - base : BATCH;
+    kepler_equation k[BATCH];
+    double s[BATCH], g[BATCH][4], ir[BATCH], hi[BATCH];
+    int active[BATCH], scalar[BATCH];
+    size_t n_active = 0;
+    for (size_t j = 0; j < m; ++j) {
+      const double *x0 = x + 3 * (base + j), *v0 = v + 3 * (base + j);
+      const double r0 = sqrt(dot3(x0, x0)), mj = mu[base + j];
+      k[j].r0 = r0;
+      k[j].eta = dot3(x0, v0);
+      k[j].beta = 2.0 * mj / r0 - dot3(v0, v0);
+      k[j].zeta = mj - k[j].beta * r0;
+      k[j].t = dt;
+      ir[j] = 1.0 / r0;
+      const double rb = k[j].beta > 0.0 ? sqrt(k[j].beta) : 0.0;
+      scalar[j] = !(k[j].beta > 0.0) || !(fabs(dt) * k[j].beta * rb < 0.3 * mj) || !(r0 > 0.0) ||
+                  !isfinite(r0 + k[j].eta) || dt == 0.0 || !(mj > 0.0);
+      active[j] = !scalar[j];
+      if (scalar[j]) continue;
+      const double tr = dt * ir[j];
+      s[j] = tr * (1.0 + tr * (-0.5 * k[j].eta * ir[j] +
+                               tr * (0.5 * k[j].eta * k[j].eta * ir[j] * ir[j] -
+                                     k[j].zeta * ir[j] / 6.0)));
+      hi[j] = 2.0 * GM_PI / rb; /* |s| < s_period bounds the root; lo = 0 (signs by dt) */
+      ++n_active;
+    }
+    for (int iter = 0; iter < 8 && n_active > 0; ++iter)
+      for (size_t j = 0; j < m; ++j) {
+        if (!active[j]) continue;
+        const kepler_equation *kj = &k[j];
+        double *gj = g[j];
+        gm_stumpff_g(kj->beta, s[j], gj);
+        const double f = kj->r0 * s[j] + kj->eta * gj[2] + kj->zeta * gj[3] - kj->t;
+        const double df = kj->r0 + kj->eta * gj[1] + kj->zeta * gj[2];
+        const double d2f = kj->eta * gj[0] + kj->zeta * gj[1];
+        const double d3f = kj->zeta * gj[0] - kj->eta * kj->beta * gj[1];
+        const double df2 = df * df;
+        const double d = -(6.0 * f * df2 - 3.0 * f * f * d2f) /
+                         (6.0 * df2 * df - 6.0 * f * df * d2f + f * f * d3f);
+        const double next = s[j] + d;
+        if (!(fabs(next) < hi[j]) || !(next * dt > 0.0)) { /* leaves the bracket */
+          active[j] = 0, scalar[j] = 1, --n_active;
+          continue;
+        }
+        if (fabs(d) <= 4.0 * DBL_EPSILON * fabs(s[j])) { /* as in solve() */
+          const double g0 = gj[0], g1 = gj[1], g2 = gj[2];
+          gj[3] += d * g2;
+          gj[2] += d * g1;
+          gj[1] += d * g0;
+          gj[0] -= kj->beta * d * g1;
+          active[j] = 0, --n_active;
+        }
+        s[j] = next;
+      }
+    for (size_t j = 0; j < m; ++j) {
+      const size_t i = base + j;
+      if (active[j]) scalar[j] = 1; /* not converged in 8 rounds: the bracketed solver */
+      if (scalar[j]) {
+        gm_status st = gm_kepler_drift(mu[i], dt, x + 3 * i, v + 3 * i, dx + 3 * i, dv + 3 * i);
+        if (st != GM_OK) return st;
+        continue;
+      }
+      const double *x0 = x + 3 * i, *v0 = v + 3 * i, *gj = g[j];
+      const double ri = 1.0 / (k[j].r0 + k[j].eta * gj[1] + k[j].zeta * gj[2]);
+      const double f_1 = -mu[i] * gj[2] * ir[j], gg = k[j].r0 * gj[1] + k[j].eta * gj[2];
+      const double fdot = -mu[i] * gj[1] * ri * ir[j], gdot_1 = -mu[i] * gj[2] * ri;
+      for (int c = 0; c < 3; ++c) {
+        dx[3 * i + c] = f_1 * x0[c] + gg * v0[c];
+        dv[3 * i + c] = fdot * x0[c] + gdot_1 * v0[c];
+      }
+    }
+  }
+  return GM_OK;
+}

@@ -46,6 +46,7 @@ typedef struct {
   double *Q_save, *V_save, *cQ_save, *cV_save; /* state before the current step */
   double *Qo, *Vo, *cQo, *cVo; /* output work: the state corrected for output */
   double *q, *grad, *accel;  /* barycentric positions, ∇V, kick acceleration */
+  double *Qd, *Vd;           /* the increments of a drift */
   double pending, pending_save; /* Kepler drift time owed by the last step (see internal_step) */
   int loaded;          /* Q, V hold the state of it->y (through C⁻¹) */
   double h_loaded;     /* the step the corrector of the loaded state was made for */
@@ -94,7 +95,7 @@ static gm_status init(gm_integrator *it) {
   w->fsal = w->n_ops > 1 && w->ops[0].kick && w->ops[w->n_ops - 1].kick;
   double **arrays[] = {&w->Q,  &w->V,   &w->cQ,    &w->cV,      &w->Q_save, &w->V_save,
                        &w->cQ_save, &w->cV_save, &w->Qo, &w->Vo, &w->cQo, &w->cVo,
-                       &w->q,  &w->grad, &w->accel};
+                       &w->q,  &w->grad, &w->accel, &w->Qd, &w->Vd};
   for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
     if ((*arrays[k] = calloc(3 * n, sizeof(double))) == NULL) return GM_ENOMEM;
   w->m = malloc(4 * n * sizeof(double));
@@ -113,7 +114,7 @@ static void release(gm_integrator *it) {
   if (w == NULL) return;
   double *arrays[] = {w->Q,       w->V,       w->cQ, w->cV, w->Q_save, w->V_save, w->cQ_save,
                       w->cV_save, w->Qo,      w->Vo, w->cQo, w->cVo,   w->q,      w->grad,
-                      w->accel,   w->m};
+                      w->accel,   w->m,       w->Qd, w->Vd};
   for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k) free(arrays[k]);
   free(w->ops);
   free(w);
@@ -142,17 +143,15 @@ static gm_status drift(gm_integrator *it, double *Q, double *V, double *cQ, doub
                        double dt) {
   ni_work *w = it->work;
   for (int k = 0; k < 3; ++k) add(&Q[k], cQ ? &cQ[k] : NULL, dt * V[k]);
-  for (size_t i = 1; i < w->n; ++i) {
-    double dx[3], dv[3];
-    gm_status st = gm_kepler_drift(w->mu[i], dt, Q + 3 * i, V + 3 * i, dx, dv);
-    if (st != GM_OK)
-      return gm_fail(it->errmsg, sizeof it->errmsg, st,
-                     "Kepler drift of body %zu over %g failed at t = %.17g (%s)", i + 1, dt,
-                     it->t, gm_strerror(st));
-    for (int k = 0; k < 3; ++k) {
-      add(&Q[3 * i + k], cQ ? &cQ[3 * i + k] : NULL, dx[k]);
-      add(&V[3 * i + k], cV ? &cV[3 * i + k] : NULL, dv[k]);
-    }
+  const size_t n = w->n;
+  double *dx = w->Qd, *dv = w->Vd;
+  gm_status st = gm_kepler_drift_many(n - 1, w->mu + 1, dt, Q + 3, V + 3, dx, dv);
+  if (st != GM_OK)
+    return gm_fail(it->errmsg, sizeof it->errmsg, st,
+                   "Kepler drift over %g failed at t = %.17g (%s)", dt, it->t, gm_strerror(st));
+  for (size_t i = 0; i < 3 * (n - 1); ++i) {
+    add(&Q[3 + i], cQ ? &cQ[3 + i] : NULL, dx[i]);
+    add(&V[3 + i], cV ? &cV[3 + i] : NULL, dv[i]);
   }
   w->force_valid = 0;
   return GM_OK;
