@@ -42,13 +42,14 @@ static const double inverse_factorial[26] = {
     2.47959626322479759e-27, 9.18368986379554601e-29,
 };
 
-void gm_stumpff_g(double beta, double s, double g[4]) {
+static inline void stumpff_g(double beta, double s, double g[4]) {
   const double z = beta * s * s;
   const double az = fabs(z);
   if (az < SERIES_LIMIT) {
-    /* c2 = Σ_j (−z)^j/(2j+2)!, c3 = Σ_j (−z)^j/(2j+3)!, by Horner's rule, with as many terms
-     * as leave a truncation below 1e-19: |z|^N/(2N+2)! at N = 6 (|z| < 0.01), 9 (< 0.3) */
-    const int terms = az < 0.01 ? 6 : az < 0.3 ? 9 : N_TERMS;
+    /* c2 = Σ_j (−z)^j/(2j+2)!, c3 = Σ_j (−z)^j/(2j+3)!, by Horner's rule, with N terms, the
+     * fewest that leave a truncation |z|^N/(2N+2)! below 1e-17 */
+    const int terms = az < 0.002 ? 4 : az < 0.02 ? 5 : az < 0.09 ? 6 : az < 0.3 ? 7
+                      : az < 0.7 ? 8 : az < 1.4 ? 9 : N_TERMS;
     double c2 = inverse_factorial[2 * terms - 2], c3 = inverse_factorial[2 * terms - 1];
     for (int j = terms - 2; j >= 0; --j) {
       c2 = inverse_factorial[2 * j] - z * c2;
@@ -73,6 +74,8 @@ void gm_stumpff_g(double beta, double s, double g[4]) {
   }
 }
 
+void gm_stumpff_g(double beta, double s, double g[4]) { stumpff_g(beta, s, g); }
+
 static double dot3(const double *a, const double *b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
@@ -84,7 +87,7 @@ typedef struct {
 /* f(s), f'(s) = r, f''(s) */
 static void evaluate(const kepler_equation *k, double s, double *f, double *df, double *d2f) {
   double g[4];
-  gm_stumpff_g(k->beta, s, g);
+  stumpff_g(k->beta, s, g);
   *f = k->r0 * s + k->eta * g[2] + k->zeta * g[3] - k->t;
   *df = k->r0 + k->eta * g[1] + k->zeta * g[2];
   *d2f = k->eta * g[0] + k->zeta * g[1];
@@ -104,7 +107,7 @@ static void evaluate(const kepler_equation *k, double s, double *f, double *df, 
 static gm_status solve(const kepler_equation *k, double s, double lo, double hi, double *root,
                        double g[4]) {
   for (int iter = 0; iter < MAX_ITERATIONS; ++iter) {
-    gm_stumpff_g(k->beta, s, g);
+    stumpff_g(k->beta, s, g);
     const double f = k->r0 * s + k->eta * g[2] + k->zeta * g[3] - k->t;
     const double df = k->r0 + k->eta * g[1] + k->zeta * g[2];
     const double d2f = k->eta * g[0] + k->zeta * g[1];
@@ -230,8 +233,8 @@ gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const doub
       k[j].zeta = mj - k[j].beta * r0;
       k[j].t = dt;
       ir[j] = 1.0 / r0;
-      const double rb = k[j].beta > 0.0 ? sqrt(k[j].beta) : 0.0;
-      scalar[j] = !(k[j].beta > 0.0) || !(fabs(dt) * k[j].beta * rb < 0.3 * mj) || !(r0 > 0.0) ||
+      const double b = k[j].beta; /* |M| = |dt| β^{3/2}/μ < 0.3, squared: no root, no division */
+      scalar[j] = !(b > 0.0) || !(dt * dt * b * b * b < 0.09 * mj * mj) || !(r0 > 0.0) ||
                   !isfinite(r0 + k[j].eta) || dt == 0.0 || !(mj > 0.0);
       active[j] = !scalar[j];
       if (scalar[j]) continue;
@@ -239,7 +242,7 @@ gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const doub
       s[j] = tr * (1.0 + tr * (-0.5 * k[j].eta * ir[j] +
                                tr * (0.5 * k[j].eta * k[j].eta * ir[j] * ir[j] -
                                      k[j].zeta * ir[j] / 6.0)));
-      hi[j] = 2.0 * GM_PI / rb; /* |s| < s_period bounds the root; lo = 0 (signs by dt) */
+      hi[j] = 4.0 * GM_PI * GM_PI / b; /* s² < s_period² = (2π)²/β bounds the root; lo = 0 */
       ++n_active;
     }
     for (int iter = 0; iter < 8 && n_active > 0; ++iter)
@@ -247,7 +250,7 @@ gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const doub
         if (!active[j]) continue;
         const kepler_equation *kj = &k[j];
         double *gj = g[j];
-        gm_stumpff_g(kj->beta, s[j], gj);
+        stumpff_g(kj->beta, s[j], gj);
         const double f = kj->r0 * s[j] + kj->eta * gj[2] + kj->zeta * gj[3] - kj->t;
         const double df = kj->r0 + kj->eta * gj[1] + kj->zeta * gj[2];
         const double d2f = kj->eta * gj[0] + kj->zeta * gj[1];
@@ -256,7 +259,7 @@ gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const doub
         const double d = -(6.0 * f * df2 - 3.0 * f * f * d2f) /
                          (6.0 * df2 * df - 6.0 * f * df * d2f + f * f * d3f);
         const double next = s[j] + d;
-        if (!(fabs(next) < hi[j]) || !(next * dt > 0.0)) { /* leaves the bracket */
+        if (!(next * next < hi[j]) || !(next * dt > 0.0)) { /* leaves the bracket */
           active[j] = 0, scalar[j] = 1, --n_active;
           continue;
         }

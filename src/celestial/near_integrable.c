@@ -42,6 +42,7 @@ typedef struct {
   int fsal;            /* first and last operations are kicks */
   int force_valid;     /* accel holds the kick acceleration at the current Q */
   double *m, *eta, *mu, *mr; /* masses, interior masses, Kepler μ_i, m'_i */
+  double *inv_m, *inv_eta, *m_over_eta; /* 1/m_i, 1/η_i, m_i/η_i: no division in a kick */
   double *Q, *V, *cQ, *cV;   /* internal state and its compensated-summation carries */
   double *Q_save, *V_save, *cQ_save, *cV_save; /* state before the current step */
   double *Qo, *Vo, *cQo, *cVo; /* output work: the state corrected for output */
@@ -98,14 +99,22 @@ static gm_status init(gm_integrator *it) {
                        &w->q,  &w->grad, &w->accel, &w->Qd, &w->Vd};
   for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
     if ((*arrays[k] = calloc(3 * n, sizeof(double))) == NULL) return GM_ENOMEM;
-  w->m = malloc(4 * n * sizeof(double));
+  w->m = malloc(7 * n * sizeof(double));
   if (w->m == NULL) return GM_ENOMEM;
   w->eta = w->m + n;
   w->mu = w->m + 2 * n;
   w->mr = w->m + 3 * n;
+  w->inv_m = w->m + 4 * n;
+  w->inv_eta = w->m + 5 * n;
+  w->m_over_eta = w->m + 6 * n;
   memcpy(w->m, w->sys->mass, n * sizeof(double));
   gm_interior_masses(n, w->m, w->eta);
   gm_kepler_parameters(w->coordinates, n, w->m, w->eta, w->sys->G, w->mu, w->mr);
+  for (size_t i = 0; i < n; ++i) {
+    w->inv_m[i] = 1.0 / w->m[i];
+    w->inv_eta[i] = 1.0 / w->eta[i];
+    w->m_over_eta[i] = w->m[i] / w->eta[i];
+  }
   return GM_OK;
 }
 
@@ -171,7 +180,7 @@ static gm_status interaction_acceleration(gm_integrator *it, const double *Q) {
     double R[3] = {Q[0], Q[1], Q[2]}; /* R_{n−1} = centre of mass, then down (coordinates.c) */
     for (size_t i = n - 1; i >= 1; --i)
       for (int k = 0; k < 3; ++k) {
-        R[k] -= (w->m[i] / w->eta[i]) * Q[3 * i + k];
+        R[k] -= w->m_over_eta[i] * Q[3 * i + k];
         q[3 * i + k] = Q[3 * i + k] + R[k];
       }
     for (int k = 0; k < 3; ++k) q[k] = R[k];
@@ -192,14 +201,15 @@ static gm_status interaction_acceleration(gm_integrator *it, const double *Q) {
       const double kepler = w->mu[i] * inverse_cube(Q + 3 * i);
       for (int k = 0; k < 3; ++k) {
         acc[3 * i + k] =
-            -g[3 * i + k] / w->m[i] + S[k] / w->eta[i - 1] + kepler * Q[3 * i + k];
+            -g[3 * i + k] * w->inv_m[i] + S[k] * w->inv_eta[i - 1] + kepler * Q[3 * i + k];
         S[k] += g[3 * i + k];
       }
     }
   } else {
     for (size_t i = 1; i < n; ++i) {
       const double kepler = w->mu[i] * inverse_cube(Q + 3 * i);
-      for (int k = 0; k < 3; ++k) acc[3 * i + k] = -g[3 * i + k] / w->m[i] + kepler * Q[3 * i + k];
+      for (int k = 0; k < 3; ++k)
+        acc[3 * i + k] = -g[3 * i + k] * w->inv_m[i] + kepler * Q[3 * i + k];
     }
   }
   return GM_OK;
