@@ -3,6 +3,8 @@
  * independent of observation, the step-size warning's period, and the corrector's internal
  * state. */
 #include <stdio.h>
+#include <stdlib.h>
+#include <unistd.h>
 
 #include "test_util.h"
 
@@ -229,4 +231,48 @@ Test(celestial, kick_quadrature_orders) {
   for (size_t i = 0; i < gm_method_count(); ++i)
     n_rows += gm_method_at(i)->family == GM_FAMILY_NEAR_INTEGRABLE;
   cr_expect_eq(checked, n_rows, "a near-integrable row is missing from this test");
+}
+
+/* n-body with central=1 is the same "central body + perturbed orbits" problem: Sun–Jupiter–
+ * Saturn read from a file integrates to the same state as outer-solar-system planets=2. */
+Test(celestial, n_body_with_a_central_body) {
+  test_model oss = test_model_with("outer-solar-system", "planets", 2);
+  const gm_celestial *c = oss.problem->celestial;
+  char path[] = "/tmp/geomint-celestial-XXXXXX";
+  int fd = mkstemp(path);
+  cr_assert_geq(fd, 0);
+  FILE *f = fdopen(fd, "w");
+  cr_assert_not_null(f);
+  for (size_t i = 0; i < 3; ++i)
+    fprintf(f, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", c->mass[i], oss.y0[3 * i],
+            oss.y0[3 * i + 1], oss.y0[3 * i + 2], oss.y0[9 + 3 * i] / c->mass[i],
+            oss.y0[9 + 3 * i + 1] / c->mass[i], oss.y0[9 + 3 * i + 2] / c->mass[i]);
+  fclose(f);
+  gm_model *nb = NULL;
+  cr_assert_eq(gm_model_create("n-body", &nb), GM_OK);
+  cr_assert_eq(gm_model_set_text(nb, "file", path), GM_OK);
+  cr_assert_eq(gm_model_set(nb, "G", c->G), GM_OK);
+  cr_assert_eq(gm_model_set(nb, "central", 1), GM_OK);
+  cr_assert_eq(gm_model_build(nb), GM_OK, "%s", gm_model_errmsg(nb));
+  const gm_problem *pb = gm_model_problem(nb);
+  cr_assert_not_null(pb->celestial);
+  double y0[18];
+  gm_model_initial_state(nb, NULL, y0);
+  gm_integrator *a = test_integrator(gm_method_find("aba-10-6-4"), pb, 0.0, y0);
+  gm_integrator *b = test_integrator(gm_method_find("aba-10-6-4"), oss.problem, 0.0, oss.y0);
+  cr_assert_eq(gm_integrator_run(a, 100, 100.0), GM_OK, "%s", gm_integrator_errmsg(a));
+  cr_assert_eq(gm_integrator_run(b, 100, 100.0), GM_OK);
+  double d = 0;
+  for (size_t i = 0; i < 18; ++i)
+    d = fmax(d, fabs(gm_integrator_state(a)[i] - gm_integrator_state(b)[i]));
+  cr_expect_leq(d, 1e-13, "n-body central=1 and outer-solar-system differ by %.3g", d);
+  gm_integrator_free(a);
+  gm_integrator_free(b);
+  /* softening with a central body is refused */
+  cr_assert_eq(gm_model_set(nb, "eps", 0.01), GM_OK);
+  cr_expect_eq(gm_model_build(nb), GM_EINVAL);
+  cr_expect_not_null(strstr(gm_model_errmsg(nb), "eps = 0"), "%s", gm_model_errmsg(nb));
+  gm_model_free(nb);
+  remove(path);
+  gm_model_free(oss.model);
 }
