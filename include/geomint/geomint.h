@@ -15,6 +15,7 @@
 #include "geomint/fields.h"
 #include "geomint/lie.h"
 #include "geomint/oscillatory.h"
+#include "geomint/celestial.h"
 
 #define GM_VERSION_MAJOR 0
 #define GM_VERSION_MINOR 1

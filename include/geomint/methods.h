@@ -23,12 +23,14 @@ typedef enum gm_method_family {
                                 (geomint/variational.h) */
   GM_FAMILY_LIE_GROUP,       /* rigid bodies on SO(3) (× R³): Lie group variational integrators,
                                 RKMK, Crouch–Grossman, body-axis splitting (geomint/lie.h) */
-  GM_FAMILY_OSCILLATORY      /* split potentials U + W: IMEX, impulse, trigonometric
+  GM_FAMILY_OSCILLATORY,     /* split potentials U + W: IMEX, impulse, trigonometric
                                 (geomint/oscillatory.h) */
+  GM_FAMILY_NEAR_INTEGRABLE  /* Kepler drifts and interaction kicks of a planetary system
+                                H = H_Kepler + ε H_interaction (geomint/celestial.h) */
 } gm_method_family;
 
 /* "explicit-rk", "splitting", "implicit-rk", "composition", "partitioned-rk", "mimetic",
- * "discrete-gradient", "variational", "lie-group", "oscillatory" */
+ * "discrete-gradient", "variational", "lie-group", "oscillatory", "near-integrable" */
 const char *gm_method_family_name(gm_method_family family);
 
 enum {

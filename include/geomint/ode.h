@@ -150,6 +150,9 @@ typedef struct gm_problem {
   /* optional, separable: the potential split V = U + W (slow + fast) that the oscillatory
    * rows need; borrowed (geomint/oscillatory.h) */
   const struct gm_split_potential *split;
+  /* optional, separable: "central body + perturbed orbits" (geomint/celestial.h): the masses
+   * and G of an n-body problem whose body 0 dominates, for the near-integrable rows */
+  const struct gm_celestial *celestial;           /* borrowed */
 } gm_problem;
 
 /* Length of the state vector: dim (first order, Poisson) or 2·dim (Hamiltonian kinds,

@@ -14,7 +14,7 @@ static const char usage[] =
     "                     [--set name=value ...] [--json] [--quiet]\n\n"
     "Measure the order of a method: integrate PROBLEM (default: kepler with e = 0.1, or for\n"
     "methods of other kinds the first of heavy-top, rigid-body, toy-resonance and\n"
-    "outer-solar-system they integrate) to T with steps H0,\n"
+    "outer-solar-system (T = 20000 and H0 = 400 days) they integrate) to T with steps H0,\n"
     "H0/R, ..., H0/R^(L-1) and fit log(error) against log(dt) over the levels whose error lies\n"
     "in the asymptotic window of the method's declared order p (relative to max(1, |y0|):\n"
     "from 10^-(p+2), clamped to [1e-7, 1e-3], down at most 2p decades and not below 1e-12).\n"
@@ -47,11 +47,13 @@ static const char usage[] =
  * classic problem. The lie-group rows of free bodies only (dep-s) take rigid-body. */
 static const struct {
   const char *name, *setting;
-} default_problems[] = {{"kepler", CLI_ORDER_DEFAULT_SETTING},
-                        {"heavy-top", NULL},
-                        {"rigid-body", NULL},
-                        {"toy-resonance", NULL},
-                        {"outer-solar-system", NULL}};
+  double t_end, dt; /* defaults for the problem's time scale (0: the command's) */
+} default_problems[] = {{"kepler", CLI_ORDER_DEFAULT_SETTING, 0, 0},
+                        {"heavy-top", NULL, 0, 0},
+                        {"rigid-body", NULL, 0, 0},
+                        {"toy-resonance", NULL, 0, 0},
+                        /* days: Jupiter's period is 4333; steps from 400 down */
+                        {"outer-solar-system", NULL, 20000, 400}};
 
 static int integrates(const gm_scheme *scheme, const char *name, const char *setting) {
   gm_model *model = NULL;
@@ -284,6 +286,8 @@ static int order_main(int argc, char **argv) {
            !integrates(&scheme, default_problems[k].name, default_problems[k].setting))
       ++k;
     problem[0] = default_problems[k].name;
+    if (default_problems[k].t_end > 0 && !options[2].seen) t_end = default_problems[k].t_end;
+    if (default_problems[k].dt > 0 && !options[1].seen) dt = default_problems[k].dt;
     if (default_problems[k].setting != NULL) {
       if (settings.n == CLI_MAX_SETTINGS) {
         cli_error("order", "too many --set options");

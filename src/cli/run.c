@@ -66,14 +66,55 @@ static cJSON *final_state(const gm_problem *pb, const cli_sim_result *r) {
   return final;
 }
 
+/* Near-integrable rows: the coordinates they work in, and a warning when the step is longer
+ * than a quarter of the shortest orbital period (or a planet is unbound) at the start. */
+typedef struct {
+  const char *coordinates; /* NULL: not a near-integrable row */
+  int corrector;
+  double shortest_period;
+  size_t n_unbound;
+  char warning[256];
+} celestial_note;
+
+static celestial_note celestial_check(const gm_scheme *sc, const gm_problem *pb,
+                                      const gm_model *model, double dt) {
+  celestial_note c = {NULL, 0, 0.0, 0, ""};
+  gm_coordinates kind = gm_method_coordinates(sc->method);
+  if (kind == 0 || pb->celestial == NULL) return c;
+  c.coordinates = gm_coordinates_name(kind);
+  c.corrector = gm_method_corrector_order(sc->method);
+  double *y0 = malloc(gm_model_state_size(model) * sizeof *y0);
+  if (y0 == NULL) return c;
+  gm_model_initial_state(model, NULL, y0);
+  c.shortest_period = gm_celestial_shortest_period(pb->celestial, kind, y0, &c.n_unbound);
+  free(y0);
+  if (dt > 0.25 * c.shortest_period)
+    snprintf(c.warning, sizeof c.warning,
+             "dt = %g is longer than a quarter of the shortest orbital period (%.4g): the "
+             "splitting's error expansion does not hold",
+             dt, c.shortest_period);
+  else if (c.n_unbound > 0)
+    snprintf(c.warning, sizeof c.warning,
+             "%zu planet(s) on unbound Kepler orbits: drifts are exact for any conic, but the "
+             "perturbation need not be small",
+             c.n_unbound);
+  return c;
+}
+
 static int print_json(const char *problem, const gm_scheme *sc, const gm_problem *pb,
-                      const run_options *o, const cli_sim_result *r) {
+                      const run_options *o, const cli_sim_result *r, const celestial_note *cn) {
   const gm_method *m = sc->method;
   cJSON *root = cJSON_CreateObject();
   cJSON_AddStringToObject(root, "problem", problem);
   cJSON_AddStringToObject(root, "method", m->name);
   if (sc->basic != NULL) cJSON_AddStringToObject(root, "basic", sc->basic->name);
   cJSON_AddStringToObject(root, "solver", gm_solver_name(sc->solver));
+  if (cn->coordinates != NULL) {
+    cJSON_AddStringToObject(root, "coordinates", cn->coordinates);
+    cJSON_AddNumberToObject(root, "corrector_order", cn->corrector);
+    cJSON_AddItemToObject(root, "shortest_period", cli_json_number(cn->shortest_period));
+    if (cn->warning[0] != '\0') cJSON_AddStringToObject(root, "warning", cn->warning);
+  }
   cJSON_AddNumberToObject(root, "dt", o->dt);
   cJSON_AddNumberToObject(root, "steps", (double)r->stats.steps);
   cJSON_AddItemToObject(root, "t0", cli_json_number(r->t0));
@@ -136,7 +177,8 @@ static void print_vector(const char *label, const double *x, size_t n) {
 }
 
 static void print_summary(const char *problem, const gm_scheme *sc, const gm_problem *pb,
-                          const run_options *o, const cli_sim_result *r) {
+                          const run_options *o, const cli_sim_result *r,
+                          const celestial_note *cn) {
   const gm_method *m = sc->method;
   char name[128];
   cli_scheme_name(sc, name, sizeof name);
@@ -154,6 +196,12 @@ static void print_summary(const char *problem, const gm_scheme *sc, const gm_pro
   if (r->restarted)
     printf("restarted         from %s at step %zu, t = %.10g\n", o->restart, r->restart_step,
            r->restart_t);
+  if (cn->coordinates != NULL) {
+    printf("coordinates       %s", cn->coordinates);
+    if (cn->corrector > 0) printf(", corrector of order %d at output times", cn->corrector);
+    printf("; shortest orbital period %.6g\n", cn->shortest_period);
+  }
+  if (cn->warning[0] != '\0') printf("warning           %s\n", cn->warning);
   if (gm_problem_has_energy(pb)) {
     printf("energy            H0 = %.10g\n", gm_monitor_initial_energy(r->monitor));
     printf("rel. energy error max %.3e, final %.3e\n",
@@ -243,10 +291,11 @@ static int run_model(const char *problem, const gm_model *model, const gm_scheme
     status = cli_plot_energy_error("run", o->plot, title, &s, 1);
   }
   if (status == CLI_EXIT_OK) {
+    celestial_note cn = celestial_check(sc, pb, model, o->dt);
     if (o->json)
-      status = print_json(problem, sc, pb, o, &r);
+      status = print_json(problem, sc, pb, o, &r, &cn);
     else
-      print_summary(problem, sc, pb, o, &r);
+      print_summary(problem, sc, pb, o, &r, &cn);
   } else if (o->json) {
     /* one JSON object also for a failed run: the error and what was done up to it */
     cJSON *root = cJSON_CreateObject();

@@ -45,6 +45,14 @@ extern const gm_method gm_lie_group_methods[];
 extern const size_t gm_n_lie_group_methods;
 extern const gm_stepper gm_lie_group_stepper;
 
+/* Near-integrable rows and their stepper (src/celestial/near_integrable*.c); the SABA_n and
+ * SBAB_n coefficients of splitting_table.c, which they share. */
+extern const gm_method gm_near_integrable_methods[];
+extern const size_t gm_n_near_integrable_methods;
+extern const gm_stepper gm_near_integrable_stepper;
+gm_status gm_saba_tableau(const gm_method *m, gm_tableau *t);
+gm_status gm_sbab_tableau(const gm_method *m, gm_tableau *t);
+
 /* Shared by the implicit steppers (solve_support.c). */
 /* A failed solve of the stage equations: count it (convergence failures only) and prefix the
  * reason already in it->errmsg with the method, t and h. Returns status. */

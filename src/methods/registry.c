@@ -19,6 +19,7 @@ static const table_ref tables[] = {
     {gm_variational_methods, &gm_n_variational_methods},
     {gm_lie_group_methods, &gm_n_lie_group_methods},
     {gm_oscillatory_methods, &gm_n_oscillatory_methods},
+    {gm_near_integrable_methods, &gm_n_near_integrable_methods},
 };
 static const size_t n_tables = sizeof tables / sizeof tables[0];
 
@@ -67,6 +68,8 @@ const char *gm_method_family_name(gm_method_family family) {
       return "lie-group";
     case GM_FAMILY_OSCILLATORY:
       return "oscillatory";
+    case GM_FAMILY_NEAR_INTEGRABLE:
+      return "near-integrable";
   }
   return "unknown";
 }
@@ -100,6 +103,8 @@ const gm_stepper *gm_stepper_for(const gm_method *method, const gm_method *basic
       return &gm_lie_group_stepper;
     case GM_FAMILY_OSCILLATORY:
       return &gm_oscillatory_stepper;
+    case GM_FAMILY_NEAR_INTEGRABLE:
+      return &gm_near_integrable_stepper;
   }
   return NULL;
 }

@@ -174,3 +174,8 @@ const gm_method gm_splitting_methods[] = {
                    SBAB_DESC(4, 8), LR_REF),
 };
 const size_t gm_n_splitting_methods = sizeof gm_splitting_methods / sizeof gm_splitting_methods[0];
+
+/* The SABA_n / SBAB_n coefficients for the near-integrable rows (src/celestial), which apply
+ * them to Kepler drifts and interaction kicks. */
+gm_status gm_saba_tableau(const gm_method *m, gm_tableau *t) { return saba_tableau(m, t); }
+gm_status gm_sbab_tableau(const gm_method *m, gm_tableau *t) { return sbab_tableau(m, t); }

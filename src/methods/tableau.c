@@ -39,6 +39,7 @@ gm_status gm_method_tableau(const gm_method *m, gm_tableau **out) {
            (t->c = copy_or_zero(m->c, s));
       break;
     case GM_FAMILY_SPLITTING:
+    case GM_FAMILY_NEAR_INTEGRABLE: /* drift (Kepler) a_i, kick (interaction) b_i */
       ok = (t->a = copy_or_zero(m->a, s)) && (t->b = copy_or_zero(m->b, s));
       break;
     case GM_FAMILY_COMPOSITION:

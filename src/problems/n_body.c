@@ -24,7 +24,11 @@
  * separated by blanks; '#' starts a comment to the end of the line; blank lines are skipped.
  * The file is used as given (no change of frame); p = m v. With a file, n, cluster and seed
  * are not used. Invariants: the energy, and the components of the linear and the angular
- * momentum (gravity.c). */
+ * momentum (gravity.c).
+ *
+ * central = 1 makes it a "central body + perturbed orbits" problem (gm_problem.celestial) for
+ * the near-integrable rows: body 1 (the first line of the file) is the central body and must
+ * be heavier than all the others together, and eps must be 0 (the Kepler part is unsoftened). */
 #include <errno.h>
 #include <math.h>
 #include <stdint.h>
@@ -32,6 +36,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geomint/celestial.h"
 #include "problems/internal.h"
 
 #define MAX_BODIES 1000000
@@ -42,9 +47,10 @@ typedef struct {
   double *mass;       /* owned, n_bodies */
   double *position;   /* owned, 3 n_bodies */
   double *velocity;   /* owned, 3 n_bodies */
+  gm_celestial celestial;
 } n_body;
 
-enum { P_N, P_CLUSTER, P_SEED, P_G, P_EPS, P_FILE };
+enum { P_N, P_CLUSTER, P_SEED, P_G, P_EPS, P_FILE, P_CENTRAL };
 
 /* ---- SplitMix64 (Steele, Lea & Flood 2014): a Weyl sequence with step 0x9e3779b97f4a7c15
  * (2⁶⁴/φ) passed through a 64-bit finalizer of two xor-shift-multiply rounds. ---- */
@@ -326,9 +332,26 @@ static gm_status prepare(void *ctx, const double *params, const char *const *tex
   if (!(eps >= 0.0))
     return gm_fail(errmsg, cap, GM_EINVAL, "n-body: the softening eps must be >= 0, got %g",
                    eps);
+  const double central = params[P_CENTRAL];
+  if (!(central == 0.0 || central == 1.0))
+    return gm_fail(errmsg, cap, GM_EINVAL,
+                   "n-body: central must be 0 or 1 (body 1 is a dominant central body), got %g",
+                   central);
+  if (central == 1.0 && eps != 0.0)
+    return gm_fail(errmsg, cap, GM_EINVAL,
+                   "n-body: central = 1 needs eps = 0 (the Kepler orbits are unsoftened)");
   gm_status st = texts[P_FILE] != NULL ? read_bodies(nb, texts[P_FILE], eps, errmsg, cap)
                                        : generate(nb, params, errmsg, cap);
   if (st != GM_OK) return st;
+  if (central == 1.0) {
+    double others = 0.0;
+    for (size_t i = 1; i < nb->n_bodies; ++i) others += nb->mass[i];
+    if (nb->n_bodies < 2 || !(nb->mass[0] > others))
+      return gm_fail(errmsg, cap, GM_EINVAL,
+                     "n-body: central = 1 needs body 1 heavier than all the others together "
+                     "(mass %g against %g)",
+                     nb->mass[0], others);
+  }
   *dim = 3 * nb->n_bodies;
   return GM_OK;
 }
@@ -342,6 +365,10 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   const size_t n = nb->n_bodies;
   nb->gravity = (gm_gravity){3 * n, n, params[P_G], params[P_EPS] * params[P_EPS], nb->mass};
   gm_gravity_setup(pb);
+  if (params[P_CENTRAL] == 1.0) {
+    nb->celestial = (gm_celestial){n, nb->mass, params[P_G]};
+    pb->celestial = &nb->celestial;
+  }
   for (size_t i = 0; i < n; ++i)
     for (size_t k = 0; k < 3; ++k) {
       y0[3 * i + k] = nb->position[3 * i + k];
@@ -364,12 +391,14 @@ static const gm_param_info params[] = {
     {"seed", 1.0, "seed of the cluster's random numbers (SplitMix64)", GM_PARAM_NUMBER},
     {"G", 1.0, "gravitational constant", GM_PARAM_NUMBER},
     {"eps", 0.0, "softening length (Plummer softening), >= 0", GM_PARAM_NUMBER},
-    {"file", 0.0, "file of bodies, one per line: m x y z vx vy vz", GM_PARAM_TEXT}};
+    {"file", 0.0, "file of bodies, one per line: m x y z vx vy vz", GM_PARAM_TEXT},
+    {"central", 0.0, "1: body 1 is a dominant central body (near-integrable rows)",
+     GM_PARAM_NUMBER}};
 
 const gm_model_def gm_model_n_body = {
     {"n-body",
      "N bodies with pairwise gravity, optional softening; a Plummer or cold cluster drawn "
      "from a seed, or a file",
-     GM_PROBLEM_SEPARABLE, 300, 6, params, GM_GRAVITY_N_INVARIANTS, gm_gravity_invariant_names,
+     GM_PROBLEM_SEPARABLE, 300, 7, params, GM_GRAVITY_N_INVARIANTS, gm_gravity_invariant_names,
      0},
     sizeof(n_body), prepare, setup, NULL, release};

@@ -9,7 +9,15 @@
  * several independent transcriptions of that table (among them the SciML "Outer Solar System"
  * benchmark and the MatMol group's G_solar model); two further copies carry typos
  * (x of Jupiter −3.5025653, Jupiter's mass 0.00095486104043) that the majority does not. The
- * momenta are p_i = m_i v_i. */
+ * momenta are p_i = m_i v_i.
+ *
+ * The problem is a "central body + perturbed orbits" (gm_problem.celestial), so the
+ * near-integrable rows (wh, saba-n-jacobi, ...) integrate it. Parameter planets = k keeps the
+ * Sun and the first k planets (planets = 2: Sun, Jupiter, Saturn); epsilon multiplies the
+ * planets' masses (the size of the perturbation; the initial velocities stay). */
+#include <math.h>
+
+#include "geomint/celestial.h"
 #include "problems/internal.h"
 
 #define N_BODIES 6
@@ -17,6 +25,7 @@
 typedef struct {
   gm_gravity gravity; /* first: the shared gravity callbacks read it */
   double mass[N_BODIES];
+  gm_celestial celestial;
 } outer_solar_system;
 
 static const double mass[N_BODIES] = {
@@ -52,26 +61,52 @@ static const double gravitational_constant = 2.95912208286e-4;
 
 static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *t0, double *y0,
                        char *errmsg, size_t cap) {
-  (void)params;
   (void)t0;
-  (void)errmsg;
-  (void)cap;
   outer_solar_system *s = ctx;
-  for (size_t i = 0; i < N_BODIES; ++i) s->mass[i] = mass[i];
-  s->gravity = (gm_gravity){3 * N_BODIES, N_BODIES, gravitational_constant, 0.0, s->mass};
+  const size_t n = (size_t)params[0] + 1;
+  for (size_t i = 0; i < n; ++i) s->mass[i] = i == 0 ? mass[0] : params[1] * mass[i];
+  s->gravity = (gm_gravity){3 * n, n, gravitational_constant, 0.0, s->mass};
   gm_gravity_setup(pb);
-  for (size_t i = 0; i < N_BODIES; ++i)
+  s->celestial = (gm_celestial){n, s->mass, gravitational_constant};
+  pb->celestial = &s->celestial;
+  for (size_t i = 0; i < n; ++i)
     for (size_t k = 0; k < 3; ++k) {
       y0[3 * i + k] = position[i][k];
-      y0[3 * N_BODIES + 3 * i + k] = mass[i] * velocity[i][k];
+      y0[3 * n + 3 * i + k] = s->mass[i] * velocity[i][k];
     }
+  (void)errmsg;
+  (void)cap;
   return GM_OK;
 }
+
+static gm_status prepare(void *ctx, const double *params, const char *const *texts, size_t *dim,
+                         char *errmsg, size_t cap) {
+  (void)ctx;
+  (void)texts;
+  const double k = params[0];
+  if (!(k >= 1.0 && k <= N_BODIES - 1 && k == floor(k)))
+    return gm_fail(errmsg, cap, GM_EINVAL,
+                   "outer-solar-system: planets must be an integer from 1 to %d, got %g",
+                   N_BODIES - 1, k);
+  if (!(params[1] > 0.0))
+    return gm_fail(errmsg, cap, GM_EINVAL,
+                   "outer-solar-system: epsilon (the planets' mass factor) must be positive, "
+                   "got %g",
+                   params[1]);
+  *dim = 3 * ((size_t)k + 1);
+  return GM_OK;
+}
+
+static const gm_param_info params[] = {
+    {"planets", 5.0, "keep the Sun and the first k planets (2: Sun-Jupiter-Saturn)",
+     GM_PARAM_NUMBER},
+    {"epsilon", 1.0, "factor on the planets' masses (the perturbation's size)",
+     GM_PARAM_NUMBER}};
 
 const gm_model_def gm_model_outer_solar_system = {
     {"outer-solar-system",
      "Sun (with the inner planets), Jupiter, Saturn, Uranus, Neptune, Pluto; HLW Table I.2.1, "
      "AU, days",
-     GM_PROBLEM_SEPARABLE, 3 * N_BODIES, 0, NULL, GM_GRAVITY_N_INVARIANTS,
+     GM_PROBLEM_SEPARABLE, 3 * N_BODIES, 2, params, GM_GRAVITY_N_INVARIANTS,
      gm_gravity_invariant_names, 0},
-    sizeof(outer_solar_system), NULL, setup, NULL, NULL};
+    sizeof(outer_solar_system), prepare, setup, NULL, NULL};

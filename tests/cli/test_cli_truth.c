@@ -91,7 +91,13 @@ Test(truth, order_defaults_measure_every_row) {
     if (m->family != GM_FAMILY_LIE_GROUP && m->family != GM_FAMILY_OSCILLATORY)
       cr_expect(strcmp(problem, "kepler") == 0 || strcmp(problem, "outer-solar-system") == 0,
                 "%s: measured on %s", m->name, problem);
-    if (m->order >= 14) {
+    if (m->family == GM_FAMILY_NEAR_INTEGRABLE && strcmp(outcome, "measured") != 0) {
+      /* error ε h^{2n} + ε² h²: on the outer solar system the classical order-2 term ε² h² of
+       * the higher rows lies at round-off; the command says so (tests/convergence/
+       * test_celestial_scaling.c fits both exponents) */
+      cr_expect_eq(r.status, 1, "%s: exit %d", m->name, r.status);
+      cr_expect(strstr(r.err, "order not measured") != NULL, "%s: %s", m->name, r.err);
+    } else if (m->order >= 14) {
       cr_expect_eq(r.status, 1, "%s: exit %d", m->name, r.status);
       cr_expect_str_eq(outcome, "round-off", "%s", m->name);
       cr_expect(strstr(r.err, "round-off") != NULL, "%s: %s", m->name, r.err);
