@@ -407,7 +407,7 @@ typedef struct gm_harminv_mode {
 
 /* Modes of the signal re (+ i im when im is non-NULL) sampled every dt, with frequencies in
  * [f_min, f_max] (harminv's band; 0 <= f_min < f_max <= 1/(2dt)), using n_basis basis
- * functions (0: harminv's default density, min(100, n/2)). At most max_modes are written, in
+ * functions (0: the harminv program's default, 1.1 per Fourier bin of the band, 2..300). At most max_modes are written, in
  * ascending frequency; n_modes receives how many were written. Every mode harminv returns in
  * the band is kept (filter on error/Q yourself). Real signals give each mode once, at f > 0.
  * Errors: n < 8, non-finite samples or dt, a bad band. */

@@ -1,0 +1,170 @@
+/* Private declarations of the fields module (the Yee solver); never installed. */
+#ifndef GM_FIELDS_INTERNAL_H
+#define GM_FIELDS_INTERNAL_H
+
+#include <stddef.h>
+
+#include "core/internal.h"
+#include "geomint/fields.h"
+
+#define YEE_ERRMSG 256
+
+/* OpenMP pragmas that vanish without OpenMP. Update loops write disjoint slots and reduce
+ * nothing, so results are bitwise identical for any thread count. */
+#ifdef _OPENMP
+#define YEE_OMP(x) _Pragma(#x)
+#else
+#define YEE_OMP(x)
+#endif
+/* Loops over fewer locations than this stay serial. */
+#define YEE_OMP_MIN 32768
+
+struct gm_yee_materials {
+  gm_yee_grid grid;
+  size_t n_cells;
+  double *epsilon, *mu, *sigma; /* per cell, x fastest */
+  char errmsg[YEE_ERRMSG];
+};
+
+/* A box of locations of one component: [lo, lo + cnt) per axis, in component index space. */
+typedef struct yee_box {
+  size_t lo[3], cnt[3];
+} yee_box;
+
+/* One CPML auxiliary term (Roden & Gedney 2000; Taflove & Hagness eqs. 7.105–7.106):
+ *   ψ ← b ψ + c (src[idx + o1] − src[idx + o0]) / h_d;   target[idx] += w ψ
+ * over a slab of target locations. w holds sign × (Δt/ε or Δt/μ of the location). */
+typedef struct yee_cpml_term {
+  yee_box box;
+  int target, src;       /* components */
+  long o1, o0;           /* offsets of the difference along the derivative axis */
+  double inv_h;          /* 1 / h_d */
+  const double *b, *c;   /* per position along d (index + offset of that axis) */
+  size_t m[3];           /* 1 on the derivative axis, 0 elsewhere: picks the position */
+  size_t n;              /* locations in the slab */
+  double *psi;           /* n per field part */
+  double *w;             /* n */
+  int e_field;           /* 1: an E target (applied after the E update) */
+} yee_cpml_term;
+
+typedef struct yee_source {
+  size_t n;              /* locations */
+  size_t *index;         /* array indices */
+  double *coef;          /* per location: soft: −Δt/ε·weight (or −Δt/μ·weight); hard: weight */
+  int component;
+  int hard;
+  gm_waveform wave;
+  double time_shift;     /* waveform time = t_n + time_shift */
+  /* charge bookkeeping (soft E sources): vertex indices, ρ values, per-edge ±Δt/h factors */
+  size_t n_vertices;
+  size_t *vertex;        /* 2 per location: array index of the lower and upper vertex */
+  double *rho;           /* per vertex slot (2 per location) */
+  double *drho;          /* per vertex slot: Δt·weight/h (lower: +, upper: −) times g */
+} yee_source;
+
+typedef struct yee_probe {
+  int component;
+  size_t index;
+  size_t n, capacity;
+  double *t, *re, *im;
+} yee_probe;
+
+typedef struct yee_observer {
+  size_t every;
+  gm_yee_observer_fn fn;
+  void *ctx;
+  size_t last_step;      /* step of the last call (SIZE_MAX: never) */
+} yee_observer;
+
+/* TF/SF: a 1-D Yee grid along the axis carries the incident wave; the corrections on the box
+ * faces add target[index] += coef · aux[aux_index] after each half step. */
+typedef struct yee_tfsf_corr {
+  size_t n;
+  int *comp;
+  size_t *target, *aux;
+  double *coef;
+} yee_tfsf_corr;
+
+typedef struct yee_tfsf {
+  gm_waveform wave;
+  size_t n_aux;          /* aux E nodes 0..n_aux−1; aux H at the n_aux−1 half nodes between */
+  double *e, *h;
+  double *ca_e, *cb_e;   /* aux E update: e ← ca e − cb (h_j − h_{j−1}) / h */
+  double *ca_h, *cb_h;   /* aux H update: h ← ca h − cb (e_{j+1} − e_j) / h */
+  double inv_h;
+  size_t drive;          /* node set to amplitude·g(t) */
+  yee_tfsf_corr ecorr, hcorr;
+} yee_tfsf;
+
+struct gm_yee {
+  gm_yee_layout L;
+  gm_yee_options opt;
+  int n_axes;
+  long s[3];             /* strides for differences (0 on absent axes) */
+  double dt;
+  int n_parts;           /* 1 real, 2 complex (Bloch) */
+  int n_threads;
+  double *zeros;         /* stands in for components the dimension lacks (read, never written) */
+  void (*update_e[3])(gm_yee *s, int part);
+  void (*update_h[3])(gm_yee *s, int part);
+  int active[GM_YEE_N_COMPONENTS];
+  double *f[2][GM_YEE_N_COMPONENTS];
+  /* Hodge-star update coefficients: E: cb = Δt/ε_e /(1 + σΔt/2ε), ca = loss factor;
+   * H: cb = Δt/μ_f. Arrays when the medium varies, else the scalars. */
+  int uniform, lossy;
+  double *cb[GM_YEE_N_COMPONENTS], *ca[3];
+  double cb0[GM_YEE_N_COMPONENTS], ca0;
+  /* per-cell material copies (NULL when uniform) for diagnostics */
+  double *eps_cell, *mu_cell;
+  double eps0, mu0;
+  /* per axis, per position index (extent entries, index + offset): 1/(κ h) at integer (e)
+   * and half-integer (h) positions; 0 on absent axes */
+  double *inv_e[3], *inv_h[3];
+  double *cpml_be[3], *cpml_ce[3], *cpml_bh[3], *cpml_ch[3];
+  yee_box upd[GM_YEE_N_COMPONENTS]; /* update range of each component */
+  size_t n_cpml;
+  yee_cpml_term *cpml;
+  double phase_cos[3], phase_sin[3];
+  int periodic[3];
+  size_t n_sources;
+  yee_source *sources;
+  size_t n_probes;
+  yee_probe *probes;
+  size_t n_observers;
+  yee_observer *observers;
+  size_t n_tfsf;
+  yee_tfsf *tfsf;
+  size_t step;
+  char errmsg[YEE_ERRMSG];
+};
+
+/* Helpers shared by the solver files. */
+static inline int yee_is_e(int c) { return c < 3; }
+static inline size_t yee_idx(const gm_yee_layout *L, long i, long j, long k) {
+  return (size_t)((i + (long)L->offset[0]) * (long)L->stride[0] +
+                  (j + (long)L->offset[1]) * (long)L->stride[1] +
+                  (k + (long)L->offset[2]) * (long)L->stride[2]);
+}
+/* Edge ε / σ averaged over the cells around the edge, face 1/μ averaged over the cells on
+ * both sides: the diagonal DEC Hodge stars for piecewise-constant media (seed 000 §3.3). */
+void yee_edge_average(const gm_yee_layout *L, const int periodic[3], int axis, long i, long j,
+                      long k, const double *cell, double *mean);
+void yee_face_average_inverse(const gm_yee_layout *L, const int periodic[3], int axis, long i,
+                              long j, long k, const double *cell, double *mean_inverse);
+void yee_apply_ghosts_e(gm_yee *s);
+void yee_apply_ghosts_h(gm_yee *s);
+void yee_select_kernels(gm_yee *s);
+void yee_update_e(gm_yee *s);
+void yee_update_h(gm_yee *s);
+gm_status yee_cpml_setup(gm_yee *s, gm_error *err);
+void yee_cpml_apply(gm_yee *s, int e_field);
+void yee_sources_apply(gm_yee *s, int e_field);
+void yee_tfsf_apply(gm_yee *s, int e_field);
+void yee_tfsf_free(yee_tfsf *t);
+int yee_locate(const gm_yee *s, int c, const double x[3], long ijk[3]);
+double yee_medium_cb_e(const gm_yee *s, int c, size_t index);
+double yee_medium_cb_h(const gm_yee *s, int c, size_t index);
+double yee_eps_edge(const gm_yee *s, int c, long i, long j, long k);
+double yee_mu_face(const gm_yee *s, int c, long i, long j, long k);
+
+#endif
