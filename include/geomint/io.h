@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "geomint/core.h"
+#include "geomint/fields.h"
 #include "geomint/ode.h"
 
 #ifdef __cplusplus
@@ -111,6 +112,37 @@ gm_status gm_probe_csv_flush(gm_probe_csv *writer);
 size_t gm_probe_csv_rows(const gm_probe_csv *writer);
 size_t gm_probe_csv_columns(const gm_probe_csv *writer); /* n_columns, t not counted */
 const char *gm_probe_csv_errmsg(const gm_probe_csv *writer);
+
+/* ---- snapshots of the Yee solver (geomint/fields.h) --------------------------------------- */
+
+/* Component c (part 0 real, 1 imaginary) averaged to cell centres: the mean over the
+ * component's locations on the cell's edges (E) or faces (H), along the present axes.
+ * out: one value per cell, x fastest (gm_image layout). Errors: GM_EINVAL (NULL, a component
+ * the dimension lacks, part 1 of real fields). */
+gm_status gm_yee_cell_average(const gm_yee *solver, gm_yee_component c, int part, double *out);
+
+enum { GM_SNAPSHOT_VTI = 1, GM_SNAPSHOT_HDF5 = 2 }; /* formats, combined with | */
+
+typedef struct gm_yee_writer gm_yee_writer;
+
+/* A writer of snapshots of solver (borrowed; the same grid for every write): cell data "E" and
+ * "H" (vectors averaged to cell centres, 0 for components the dimension lacks; "E_im", "H_im"
+ * for complex fields) and, when materials is non-NULL (copied here), "epsilon", "mu", "sigma".
+ * Each write creates <prefix>_<step, 6 digits>.vti and/or .h5 and rewrites the ParaView
+ * collection <prefix>.pvd that lists every .vti written with its time. The files carry the
+ * time of H (t_n); E is half a step earlier (fields.h). prefix is copied; its directory must
+ * exist. Errors: GM_EINVAL (no format, bad encoding, materials of another grid),
+ * GM_EUNSUPPORTED (HDF5 asked for but not built in), GM_ENOMEM. */
+gm_status gm_yee_writer_create(const gm_yee *solver, const gm_yee_materials *materials,
+                               const char *prefix, unsigned formats, gm_vti_encoding encoding,
+                               gm_yee_writer **out, gm_error *err);
+void gm_yee_writer_free(gm_yee_writer *writer);
+/* Write one snapshot of the solver's current state. GM_EIO with a message naming the file. */
+gm_status gm_yee_writer_write(gm_yee_writer *writer, const gm_yee *solver);
+/* The same as an observer (gm_yee_observer_fn): returns 0, or 1 when the write failed. */
+int gm_yee_writer_observe(void *writer, const gm_yee *solver);
+size_t gm_yee_writer_count(const gm_yee_writer *writer); /* snapshots written */
+const char *gm_yee_writer_errmsg(const gm_yee_writer *writer);
 
 #ifdef __cplusplus
 }
