@@ -137,7 +137,8 @@ gm_status gm_yee_writer_create(const gm_yee *solver, const gm_yee_materials *mat
                                const char *prefix, unsigned formats, gm_vti_encoding encoding,
                                gm_yee_writer **out, gm_error *err);
 void gm_yee_writer_free(gm_yee_writer *writer);
-/* Write one snapshot of the solver's current state. GM_EIO with a message naming the file. */
+/* Write one snapshot of the solver's current state (a second write at the same step
+ * overwrites the first and is listed once). GM_EIO with a message naming the file. */
 gm_status gm_yee_writer_write(gm_yee_writer *writer, const gm_yee *solver);
 /* The same as an observer (gm_yee_observer_fn): returns 0, or 1 when the write failed. */
 int gm_yee_writer_observe(void *writer, const gm_yee *solver);

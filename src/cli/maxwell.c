@@ -10,6 +10,7 @@ int mx_e4_main(int argc, char **argv);     /* maxwell_e4.c */
 
 static const char usage[] =
     "usage: geomint maxwell run SCENE.json [--out DIR] [--json] [--check] [--threads K]\n"
+    "                           [--plot FILE.png [--plot-field C]]\n"
     "       geomint maxwell cavity [--dim 2|3] [--n N] [--periods P] [--out DIR] [--json]\n"
     "       geomint maxwell e4 [--n N] [--time T] [--seed S] [--out DIR] [--json]\n\n"
     "Maxwell's equations on a Cartesian grid with the Yee scheme (E on primal edges at half\n"
@@ -30,6 +31,9 @@ static const char usage[] =
     "  --json        print one JSON object instead of the text summary\n"
     "  --check       (run) read the scene and create the solver, print what it would run\n"
     "  --threads K   OpenMP threads of the updates (default: OpenMP's, OMP_NUM_THREADS)\n"
+    "  --plot FILE   (run) a colour map of the final field (2-D: the grid, 3-D: the middle\n"
+    "                z slice) drawn by gnuplot; --plot-field C picks the component (default\n"
+    "                Ez, or Hz on a 2-D TE grid)\n"
     "  --dim 2|3     (cavity) 2: TM (Ez) in the rectangle, 3: the box (default 3)\n"
     "  --n N         cells per axis (cavity default 16, e4 default 32)\n"
     "  --periods P   (cavity) run length in periods of the lowest mode (default 200)\n"

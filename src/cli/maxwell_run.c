@@ -285,17 +285,49 @@ static int print_check(const char *path, const mx_scene *sc, const gm_yee *solve
   return CLI_EXIT_OK;
 }
 
+/* A colour map of component `field` at the final state: the grid in 2-D, the middle z slice
+ * in 3-D, the x axis stretched to a strip in 1-D. */
+static int plot_final(const char *png, const char *field, const char *scene_path,
+                      const mx_scene *sc, const gm_yee *solver) {
+  gm_yee_component c;
+  if (gm_yee_component_find(field, &c) != GM_OK || !gm_yee_dim_has(sc->grid.dim, c)) {
+    cli_error(COMMAND, "--plot-field %s: not a component of this grid", field);
+    return CLI_EXIT_USAGE;
+  }
+  size_t nx = sc->grid.n[0], ny = sc->grid.n[1], nz = sc->grid.n[2];
+  double *cells = malloc(nx * ny * nz * sizeof *cells);
+  if (cells == NULL || gm_yee_cell_average(solver, c, 0, cells) != GM_OK) {
+    free(cells);
+    cli_error(COMMAND, "cannot read %s for the plot", field);
+    return CLI_EXIT_FAILURE;
+  }
+  size_t k = nz / 2;
+  char title[512], label[64];
+  snprintf(title, sizeof title, "%s: %s at t = %.6g%s (cell averages)", scene_path, field,
+           gm_yee_component_name(c)[0] == 'E' ? gm_yee_time_e(solver) : gm_yee_time_h(solver),
+           nz > 1 ? ", middle z slice" : "");
+  snprintf(label, sizeof label, "%s", gm_yee_component_name(c));
+  double hy = ny > 1 ? sc->grid.h[1] : sc->grid.h[0] * (double)nx / 8;
+  int rc = mx_plot_map(COMMAND, png, title, label, nx, ny, sc->grid.origin[0],
+                       ny > 1 ? sc->grid.origin[1] : 0, sc->grid.h[0], hy, cells + nx * ny * k);
+  free(cells);
+  return rc;
+}
+
 int mx_run_main(int argc, char **argv) {
   const char *out_dir = "maxwell-output";
+  const char *plot = NULL, *plot_field = NULL;
   int json = 0, check = 0;
   size_t threads = 0;
   cli_option options[] = {{"--out", CLI_ARG_STRING, &out_dir, 0},
                           {"--json", CLI_ARG_FLAG, &json, 0},
                           {"--check", CLI_ARG_FLAG, &check, 0},
-                          {"--threads", CLI_ARG_COUNT, &threads, 0}};
+                          {"--threads", CLI_ARG_COUNT, &threads, 0},
+                          {"--plot", CLI_ARG_STRING, &plot, 0},
+                          {"--plot-field", CLI_ARG_STRING, &plot_field, 0}};
   const char *positional[1];
   size_t n_pos = 0;
-  int status = cli_parse(COMMAND, argc, argv, options, 4, positional, 1, &n_pos);
+  int status = cli_parse(COMMAND, argc, argv, options, 6, positional, 1, &n_pos);
   if (status == CLI_HELP) {
     fputs(mx_usage(), stdout);
     return CLI_EXIT_OK;
@@ -306,6 +338,11 @@ int mx_run_main(int argc, char **argv) {
     return CLI_EXIT_USAGE;
   }
   const char *path = positional[0];
+  if (plot_field != NULL && plot == NULL) {
+    cli_error(COMMAND, "--plot-field needs --plot FILE.png");
+    return CLI_EXIT_USAGE;
+  }
+  if (plot != NULL && cli_plot_check_output(COMMAND, plot) != CLI_EXIT_OK) return CLI_EXIT_USAGE;
   mx_scene scene;
   char msg[1024];
   status = mx_scene_load(path, &scene, msg, sizeof msg);
@@ -404,6 +441,11 @@ int mx_run_main(int argc, char **argv) {
     for (size_t i = 0; status == CLI_EXIT_OK && i < r.flux.n; ++i)
       for (size_t k = 0; k < scene.n_fluxes; ++k)
         flux_integral[k] += gm_yee_dt(solver) * r.flux.values[i * r.flux.width + k];
+  }
+  if (status == CLI_EXIT_OK && plot != NULL) {
+    const char *field = plot_field;
+    if (field == NULL) field = gm_yee_dim_has(scene.grid.dim, GM_EZ) ? "Ez" : "Hz";
+    status = plot_final(plot, field, path, &scene, solver);
   }
   probe_result *pr = calloc(scene.n_probes + 1, sizeof *pr);
   if (status == CLI_EXIT_OK && scene.harminv && pr != NULL)

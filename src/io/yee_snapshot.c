@@ -25,6 +25,7 @@ struct gm_yee_writer {
   double *times;             /* owned: time of each .vti written, for the .pvd */
   size_t *steps;             /* owned */
   size_t count, cap;
+  size_t last_step;          /* step of the last snapshot (valid when count > 0) */
   char errmsg[GM_ERRMSG_SIZE];
 };
 
@@ -185,10 +186,12 @@ gm_status gm_yee_writer_write(gm_yee_writer *w, const gm_yee *solver) {
     }
   size_t step = gm_yee_step(solver);
   double t = gm_yee_time_h(solver);
+  /* the same step again (an explicit write and an observer): overwrite, list it once */
+  size_t slot = w->count > 0 && w->last_step == step ? w->count - 1 : w->count;
   char path[4096];
   gm_error err = {{0}};
   if (w->formats & GM_SNAPSHOT_VTI) {
-    if (w->count == w->cap) {
+    if (slot == w->cap) {
       size_t cap = w->cap > 0 ? 2 * w->cap : 16;
       double *times = realloc(w->times, cap * sizeof *times);
       if (times != NULL) w->times = times;
@@ -201,15 +204,16 @@ gm_status gm_yee_writer_write(gm_yee_writer *w, const gm_yee *solver) {
     snprintf(path, sizeof path, "%s_%06zu.vti", w->prefix, step);
     gm_status st = gm_vti_write(path, &w->image, w->arrays, w->n_arrays, t, w->encoding, &err);
     if (st != GM_OK) return gm_fail(w->errmsg, sizeof w->errmsg, st, "%s", err.message);
-    w->times[w->count] = t;
-    w->steps[w->count] = step;
+    w->times[slot] = t;
+    w->steps[slot] = step;
   }
   if (w->formats & GM_SNAPSHOT_HDF5) {
     snprintf(path, sizeof path, "%s_%06zu.h5", w->prefix, step);
     gm_status st = gm_hdf5_write(path, &w->image, w->arrays, w->n_arrays, t, &err);
     if (st != GM_OK) return gm_fail(w->errmsg, sizeof w->errmsg, st, "%s", err.message);
   }
-  w->count++;
+  w->count = slot + 1;
+  w->last_step = step;
   if (w->formats & GM_SNAPSHOT_VTI) return write_pvd(w);
   return GM_OK;
 }

@@ -24,6 +24,9 @@ static void write_text(const char *name, const char *text) {
   fclose(f);
 }
 
+/* gnuplot on PATH (as the program looks for it) */
+static int cli_gnuplot_available_here(void) { return system("command -v gnuplot >/dev/null 2>&1") == 0; }
+
 static int file_exists(const char *name) {
   struct stat sb;
   return stat(path_in_tmp(name), &sb) == 0 && sb.st_size > 0;
@@ -256,6 +259,17 @@ Test(cli_maxwell, run_writes_probes_energy_flux_and_snapshots) {
   cr_expect(strstr(r.out, "wrote out2/: probes.csv, energy.csv, flux.csv, 4 snapshots") != NULL,
             "%s", r.out);
   run_output_free(&r);
+  r = run_cli("maxwell run scene.json --out out4 --threads 1 --plot ez.png --plot-field Hy");
+  cr_expect_eq(r.status, cli_gnuplot_available_here() ? 0 : 1, "%s", r.err);
+  if (r.status == 0) cr_expect(file_exists("ez.png"));
+  run_output_free(&r);
+  r = run_cli("maxwell run scene.json --out out4 --plot ez.png --plot-field Hz");
+  cr_expect_eq(r.status, 2, "a TM grid has no Hz: %s", r.err);
+  cr_expect(strstr(r.err, "--plot-field Hz: not a component of this grid") != NULL, "%s", r.err);
+  run_output_free(&r);
+  r = run_cli("maxwell run scene.json --plot-field Ez");
+  cr_expect_eq(r.status, 2);
+  run_output_free(&r);
   r = run_cli("maxwell run scene.json --out out3 --check");
   cr_expect_eq(r.status, 0, "%s", r.err);
   cr_expect(strstr(r.out, "scene is valid") != NULL, "%s", r.out);
@@ -370,5 +384,24 @@ Test(cli_maxwell, e4_energy_bounded_leapfrog_conserved) {
   cr_expect_eq(r.status, 0);
   cr_expect(strstr(r.out, "E4 (seed 000): PEC unit square, 16 x 16 cells") != NULL, "%s", r.out);
   cr_expect(strstr(r.out, "conserved to round-off") != NULL);
+  run_output_free(&r);
+}
+
+/* ---- the documentation shows the example scene that is in the tree, and it is valid ----- */
+
+Test(cli_maxwell, docs_show_the_example_scene) {
+  char *doc = read_file(GM_SOURCE_DIR "/docs/maxwell.md");
+  char *scene = read_file(GM_SOURCE_DIR "/examples/maxwell_scene.json");
+  cr_expect_not_null(strstr(doc, scene), "docs/maxwell.md does not show examples/maxwell_scene.json");
+  free(doc);
+  free(scene);
+  run_output r = run_cli("maxwell run '%s/examples/maxwell_scene.json' --check --json", GM_SOURCE_DIR);
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  cr_expect_eq(json_number(o, "steps"), 914);
+  cr_expect_eq(json_number(o, "sources"), 1);
+  cr_expect_eq(json_number(o, "probes"), 3);
+  cr_expect_eq(json_number(o, "flux_planes"), 2);
+  cJSON_Delete(o);
   run_output_free(&r);
 }

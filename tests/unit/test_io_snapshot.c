@@ -395,3 +395,136 @@ Test(io_snapshot, probe_csv_bad_input) {
     cr_assert_eq(gm_probe_csv_create("/dev/full", 1, names, &w, &err), GM_EIO);
   }
 }
+
+/* ---- snapshots of the Yee solver ------------------------------------------------------------ */
+
+static double linear(void *ctx, const double x[3]) {
+  const double *c = ctx;
+  return c[0] + c[1] * x[0] + c[2] * x[1] + c[3] * x[2];
+}
+
+/* On interior cells (those whose edges and faces are all off the walls) the cell average of a
+ * linear field is its value at the cell centre: checked for every component, 3-D and 2-D. */
+Test(io_snapshot, yee_cell_average_of_linear_fields) {
+  const gm_yee_dim dims[] = {GM_YEE_3D, GM_YEE_2D_TE, GM_YEE_2D_TM, GM_YEE_1D};
+  for (size_t d = 0; d < 4; ++d) {
+    gm_yee_grid g = {dims[d], {6, 5, 4}, {0.5, 0.25, 2.0}, {1.0, -2.0, 3.0}};
+    size_t axes = gm_yee_dim_axes(dims[d]);
+    gm_yee *s = NULL;
+    gm_error err = {{0}};
+    cr_assert_eq(gm_yee_create(&g, NULL, NULL, &s, &err), GM_OK, "%s", err.message);
+    size_t n[3] = {6, axes > 1 ? 5 : 1, axes > 2 ? 4 : 1};
+    double *avg = malloc(n[0] * n[1] * n[2] * sizeof *avg);
+    for (int c = 0; c < GM_YEE_N_COMPONENTS; ++c) {
+      if (!gm_yee_dim_has(dims[d], (gm_yee_component)c)) {
+        cr_expect_eq(gm_yee_cell_average(s, (gm_yee_component)c, 0, avg), GM_EINVAL);
+        continue;
+      }
+      double coef[4] = {0.3 + c, 1.5, -0.75, 0.125 * c};
+      cr_assert_eq(gm_yee_set_field_fn(s, (gm_yee_component)c, 0, linear, coef), GM_OK);
+      cr_assert_eq(gm_yee_cell_average(s, (gm_yee_component)c, 0, avg), GM_OK);
+      for (size_t k = 0; k < n[2]; ++k)
+        for (size_t j = 0; j < n[1]; ++j)
+          for (size_t i = 0; i < n[0]; ++i) {
+            size_t ijk[3] = {i, j, k};
+            int interior = 1;
+            double x[3] = {0, 0, 0};
+            for (size_t a = 0; a < 3; ++a) {
+              if (a < axes) {
+                interior &= ijk[a] > 0 && ijk[a] + 1 < n[a];
+                x[a] = g.origin[a] + ((double)ijk[a] + 0.5) * g.h[a];
+              } else {
+                x[a] = 0.0; /* absent axes: no variation, the location's coordinate is 0 */
+              }
+            }
+            if (!interior) continue;
+            double want = linear(coef, x);
+            cr_expect(fabs(avg[i + n[0] * (j + n[1] * k)] - want) < 1e-13 * (1 + fabs(want)),
+                      "dim %d, %s, cell (%zu,%zu,%zu): %.17g, want %.17g", (int)dims[d],
+                      gm_yee_component_name((gm_yee_component)c), i, j, k,
+                      avg[i + n[0] * (j + n[1] * k)], want);
+          }
+    }
+    cr_expect_eq(gm_yee_cell_average(s, GM_EX, 1, avg), GM_EINVAL, "real fields have no part 1");
+    free(avg);
+    gm_yee_free(s);
+  }
+}
+
+Test(io_snapshot, yee_writer_files_collection_and_values) {
+  gm_yee_grid g = {GM_YEE_3D, {5, 4, 3}, {0.2, 0.25, 1.0 / 3.0}, {0, 0, 0}};
+  gm_yee_materials *m = NULL;
+  gm_error err = {{0}};
+  cr_assert_eq(gm_yee_materials_create(&g, &m, &err), GM_OK, "%s", err.message);
+  gm_medium glass = {3.0, 1.0, 0.0};
+  double centre[3] = {0.5, 0.5, 0.5};
+  cr_assert_eq(gm_yee_paint_sphere(m, centre, 0.35, &glass), GM_OK);
+  gm_yee *s = NULL;
+  cr_assert_eq(gm_yee_create(&g, m, NULL, &s, &err), GM_OK, "%s", err.message);
+  double coef[4] = {1, 2, 3, 4};
+  cr_assert_eq(gm_yee_set_field_fn(s, GM_EY, 0, linear, coef), GM_OK);
+  cr_assert_eq(gm_yee_set_field_fn(s, GM_HZ, 0, linear, coef), GM_OK);
+
+  unsigned formats = GM_SNAPSHOT_VTI | (gm_hdf5_available() ? GM_SNAPSHOT_HDF5 : 0);
+  gm_yee_writer *w = NULL;
+  cr_assert_eq(gm_yee_writer_create(s, m, in_dir("snap"), formats, GM_VTI_APPENDED, &w, &err),
+               GM_OK, "%s", err.message);
+  cr_assert_eq(gm_yee_writer_write(w, s), GM_OK, "%s", gm_yee_writer_errmsg(w));
+  cr_assert_eq(gm_yee_add_observer(s, 2, gm_yee_writer_observe, w), GM_OK);
+  cr_assert_eq(gm_yee_advance(s, 4), GM_OK, "%s", gm_yee_errmsg(s)); /* steps 0 (again), 2, 4 */
+  cr_expect_eq(gm_yee_writer_count(w), 3, "step 0 is written once: the writer overwrote it");
+
+  char *pvd = slurp(in_dir("snap.pvd"), NULL);
+  cr_expect(strstr(pvd, "<DataSet timestep=\"0\" file=\"snap_000000.vti\"/>") != NULL, "%s", pvd);
+  cr_expect(strstr(pvd, "file=\"snap_000004.vti\"") != NULL, "%s", pvd);
+  free(pvd);
+  if (gm_hdf5_available()) {
+    struct stat sb;
+    cr_expect_eq(stat(in_dir("snap_000004.h5"), &sb), 0);
+  }
+  /* the .vti holds what gm_yee_cell_average gives, and the materials */
+  char *doc = slurp(in_dir("snap_000004.vti"), NULL);
+  enum { NC = 5 * 4 * 3 };
+  double e[3 * NC], eps[NC], want[NC];
+  cr_assert_eq(read_vti_array(doc, "CellData", "E", e, 3 * NC), 3);
+  for (int c = 0; c < 3; ++c) {
+    cr_assert_eq(gm_yee_cell_average(s, (gm_yee_component)c, 0, want), GM_OK);
+    for (size_t i = 0; i < NC; ++i)
+      cr_expect_eq(memcmp(&e[3 * i + (size_t)c], &want[i], sizeof(double)), 0, "E%c of cell %zu",
+                   'x' + c, i);
+  }
+  read_vti_array(doc, "CellData", "epsilon", eps, NC);
+  cr_expect_eq(memcmp(eps, gm_yee_materials_epsilon(m), sizeof eps), 0);
+  double t = NAN;
+  cr_assert_not_null(strstr(doc, "Name=\"TimeValue\""));
+  sscanf(strstr(strstr(doc, "Name=\"TimeValue\""), ">") + 1, "%lf", &t);
+  cr_expect_float_eq(t, 4 * gm_yee_dt(s), 1e-15, "the time of H");
+  free(doc);
+
+  /* bad writers */
+  gm_yee_writer *bad = NULL;
+  cr_expect_eq(gm_yee_writer_create(s, NULL, in_dir("x"), 0, GM_VTI_ASCII, &bad, &err), GM_EINVAL);
+  cr_expect_eq(gm_yee_writer_create(s, NULL, "", GM_SNAPSHOT_VTI, GM_VTI_ASCII, &bad, &err),
+               GM_EINVAL);
+  gm_yee_grid other = g;
+  other.n[0] = 6;
+  gm_yee_materials *m2 = NULL;
+  cr_assert_eq(gm_yee_materials_create(&other, &m2, &err), GM_OK);
+  cr_expect_eq(gm_yee_writer_create(s, m2, in_dir("x"), GM_SNAPSHOT_VTI, GM_VTI_ASCII, &bad, &err),
+               GM_EINVAL);
+  cr_expect(strstr(err.message, "materials have 72 cells, the grid 60") != NULL, "%s",
+            err.message);
+  cr_expect_null(bad);
+  gm_yee_writer *nowhere = NULL;
+  cr_assert_eq(gm_yee_writer_create(s, NULL, "/nonexistent-dir/snap", GM_SNAPSHOT_VTI,
+                                    GM_VTI_ASCII, &nowhere, &err), GM_OK);
+  cr_expect_eq(gm_yee_writer_write(nowhere, s), GM_EIO);
+  cr_expect(strstr(gm_yee_writer_errmsg(nowhere), "/nonexistent-dir/snap_000004.vti") != NULL,
+            "%s", gm_yee_writer_errmsg(nowhere));
+  gm_yee_writer_free(nowhere);
+  gm_yee_writer_free(NULL);
+  gm_yee_materials_free(m2);
+  gm_yee_writer_free(w);
+  gm_yee_free(s);
+  gm_yee_materials_free(m);
+}
