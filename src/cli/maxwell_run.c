@@ -194,10 +194,20 @@ static void print_text(const char *path, const mx_scene *sc, const gm_yee *solve
                md->amplitude, md->error);
       }
     }
-  printf("  wrote %s/: probes.csv%s%s", out_dir, r->energy.n > 0 ? ", energy.csv" : "",
-         sc->n_fluxes > 0 ? ", flux.csv" : "");
-  if (n_snapshots > 0) printf(", %zu snapshots (snapshot.pvd)", n_snapshots);
-  printf("\n");
+  char files[256] = "";
+  size_t len = 0;
+  const char *names[3] = {sc->n_probes > 0 ? "probes.csv" : NULL,
+                          r->energy.n > 0 ? "energy.csv" : NULL,
+                          sc->n_fluxes > 0 ? "flux.csv" : NULL};
+  for (int k = 0; k < 3; ++k)
+    if (names[k] != NULL && len < sizeof files)
+      len += (size_t)snprintf(files + len, sizeof files - len, "%s%s", len > 0 ? ", " : "",
+                              names[k]);
+  if (n_snapshots > 0 && len < sizeof files)
+    snprintf(files + len, sizeof files - len, "%s%zu snapshots (snapshot.pvd)",
+             len > 0 ? ", " : "", n_snapshots);
+  printf("  wrote %s/: %s\n", out_dir, files[0] != '\0' ? files : "nothing (no probes, "
+         "energy, flux or snapshots asked for)");
 }
 
 static int print_json(const char *path, const mx_scene *sc, const gm_yee *solver, double wall,

@@ -107,9 +107,10 @@ gm_status gm_yee_writer_create(const gm_yee *solver, const gm_yee_materials *mat
     }
   if (materials != NULL) {
     if (gm_yee_materials_n_cells(materials) != w->n_cells) {
+      gm_status st = gm_error_set(err, GM_EINVAL, "snapshot writer: materials have %zu cells, "
+                                  "the grid %zu", gm_yee_materials_n_cells(materials), w->n_cells);
       gm_yee_writer_free(w);
-      return gm_error_set(err, GM_EINVAL, "snapshot writer: materials have %zu cells, the grid "
-                          "%zu", gm_yee_materials_n_cells(materials), w->n_cells);
+      return st;
     }
     w->media = malloc(3 * w->n_cells * sizeof *w->media);
     if (w->media == NULL) goto nomem;

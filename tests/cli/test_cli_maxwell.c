@@ -405,3 +405,25 @@ Test(cli_maxwell, docs_show_the_example_scene) {
   cJSON_Delete(o);
   run_output_free(&r);
 }
+
+/* Progress goes to stderr only when it is a terminal (util-linux `script` provides one). */
+Test(cli_maxwell, progress_only_on_a_terminal) {
+  write_scene("scene.json", "", "{\"steps\": 200}");
+  run_output r = run_cli("maxwell run scene.json --out out --threads 1");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_expect_eq(r.err[0], '\0', "no progress into a pipe: %s", r.err);
+  run_output_free(&r);
+  if (system("command -v script >/dev/null 2>&1") != 0) {
+    SKIP_TEST("no `script` program to provide a terminal");
+  }
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && script -qec \"'%s' maxwell run scene.json --out out2 --threads 1\" "
+           "/dev/null > tty.txt 2>&1", tmpdir, GM_CLI_PATH);
+  cr_assert_eq(system(cmd), 0);
+  char *tty = read_file(path_in_tmp("tty.txt"));
+  cr_expect(strstr(tty, "\r  step 200 / 200 (100%)") != NULL, "%s", tty);
+  cr_expect(strstr(tty, "\r\033[K") != NULL, "the progress line is cleared");
+  cr_expect(strstr(tty, "wrote out2/: probes.csv") != NULL, "%s", tty);
+  free(tty);
+}
