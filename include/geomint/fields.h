@@ -123,8 +123,9 @@ typedef enum gm_yee_boundary_kind {
 typedef struct gm_cpml {
   size_t thickness;     /* cells (>= 1) */
   double grading;       /* m (default 3) */
-  double sigma_max;     /* <= 0: σ_opt = 0.8 (m + 1) / (η h) with η = sqrt(μ/ε) of the
-                           adjacent medium (Taflove & Hagness eq. 7.67), scaled by
+  double sigma_max;     /* the stretching rate σ/ε at the PEC backing (1/time); <= 0:
+                           σ_opt = 0.8 (m + 1) / (h sqrt(εμ)) of the adjacent medium
+                           (Taflove & Hagness eq. 7.67 in units ε0 = μ0 = 1), scaled by
                            sigma_factor */
   double sigma_factor;  /* multiplies σ_opt when sigma_max <= 0 (default 1) */
   double kappa_max;     /* >= 1 (default 1) */
@@ -378,12 +379,15 @@ gm_status gm_yee_get_energy(const gm_yee *solver, gm_yee_energy *energy);
 /* Discrete div B per primal cell (seed 000 eq. 3.10; B = ⋆_μ H as a 2-form over the cell's
  * faces divided by its volume). out (may be NULL): one value per cell at array index (i,j,k)
  * of the layout; max_abs (may be NULL): the largest |div B| (real part and imaginary part).
- * In CPML layers the stretched B is not the stored one; cells there are reported as 0. */
+ * In CPML layers the stretched B is not the stored one; cells there are reported as 0. Soft H
+ * sources are magnetic currents: they change div B by the magnetic charge they move. */
 gm_status gm_yee_div_b(const gm_yee *solver, double *out, double *max_abs);
 /* Gauss residual div D − ρ per primal vertex (seed 000 eq. 3.11, D = ⋆_ε E on dual faces, ρ
  * from the currents added; soft E point sources are currents too). Vertices on PEC and CPML
  * faces are reported as 0 (the wall holds a surface charge the scheme does not track), as are
- * vertices in CPML layers. */
+ * vertices in CPML layers. Constant in time for σ = 0 without hard E sources (a conductor's
+ * current σE moves charge that is not tracked; a hard source overrides Ampère's law). With a
+ * Bloch k the charge of a current across the periodic face is booked without the phase. */
 gm_status gm_yee_gauss(const gm_yee *solver, double *out, double *max_abs);
 /* Total charge Σ ρ V moved by the currents so far. */
 double gm_yee_charge(const gm_yee *solver);

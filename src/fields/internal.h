@@ -105,8 +105,16 @@ struct gm_yee {
   int n_parts;           /* 1 real, 2 complex (Bloch) */
   int n_threads;
   double *zeros;         /* stands in for components the dimension lacks (read, never written) */
-  void (*update_e[3])(gm_yee *s, int part);
-  void (*update_h[3])(gm_yee *s, int part);
+  /* update kernels over a box of one component, and (3-D) one fused kernel per field that
+   * updates all three components in one sweep over the box they share; the rest of each
+   * component's range is a few face slabs */
+  void (*update_e[3])(gm_yee *s, int part, const yee_box *box);
+  void (*update_h[3])(gm_yee *s, int part, const yee_box *box);
+  void (*fused_e)(gm_yee *s, int part, const yee_box *box);
+  void (*fused_h)(gm_yee *s, int part, const yee_box *box);
+  yee_box fused_box[2];  /* E, H (cnt 0 when not fused) */
+  yee_box rest[GM_YEE_N_COMPONENTS][6];
+  size_t n_rest[GM_YEE_N_COMPONENTS];
   int active[GM_YEE_N_COMPONENTS];
   double *f[2][GM_YEE_N_COMPONENTS];
   /* Hodge-star update coefficients: E: cb = Δt/ε_e /(1 + σΔt/2ε), ca = loss factor;

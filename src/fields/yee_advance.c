@@ -120,7 +120,6 @@ static gm_status set_common(gm_yee *s, int c, int part) {
  * periodic copies and ghosts. */
 static void finish_set(gm_yee *s, int c, int part) {
   double *f = s->f[part][c];
-  double *keep = NULL;
   const yee_box *b = &s->upd[c];
   for (size_t k = 0; k < s->L.extent[2]; ++k)
     for (size_t j = 0; j < s->L.extent[1]; ++j)
@@ -132,7 +131,6 @@ static void finish_set(gm_yee *s, int c, int part) {
           in &= ijk[a] >= (long)b->lo[a] && ijk[a] < (long)(b->lo[a] + b->cnt[a]);
         if (!in) f[yee_idx(&s->L, ijk[0], ijk[1], ijk[2])] = 0.0;
       }
-  (void)keep;
   if (yee_is_e(c))
     yee_apply_ghosts_e(s);
   else

@@ -6,8 +6,6 @@
 
 #include "fields/internal.h"
 
-static const char axis_name[3] = {'x', 'y', 'z'};
-
 int yee_locate(const gm_yee *s, int c, const double x[3], long ijk[3]) {
   double sh[3];
   size_t cnt[3];
@@ -179,5 +177,4 @@ void yee_sources_apply(gm_yee *s, int e_field) {
       for (size_t v = 0; v < src->n_vertices; ++v) src->rho[v] += src->drho[v] * g;
     }
   }
-  (void)axis_name;
 }

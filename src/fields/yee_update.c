@@ -17,12 +17,14 @@
  * 2000); the ψ terms are added by separate slab loops (yee_cpml.c). On an axis the dimension
  * lacks the stride is 0, so the difference is exactly 0. One kernel per component and per
  * choice of (uniform/per-location coefficients, lossless/lossy) is selected at create time:
- * no branch on options inside the loops. OpenMP over the two outer loops (z, y rows). */
+ * no branch on options inside the loops. OpenMP over the two outer loops (z, y rows), SIMD over
+ * the inner one (elementwise, no reductions: bitwise identical for any thread count). */
+#include <string.h>
+
 #include "fields/internal.h"
 
 #define E_KERNEL(NAME, A, B, C, INVB, INVC, UPDATE)                                           \
-  static void NAME(gm_yee *s, int p) {                                                        \
-    const yee_box *bx = &s->upd[A];                                                           \
+  static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
     double *restrict E = s->f[p][A];                                                          \
     const double *restrict Hc = s->f[p][3 + C];                                               \
     const double *restrict Hb = s->f[p][3 + B];                                               \
@@ -35,14 +37,12 @@
     const long i0 = (long)bx->lo[0], i1 = i0 + (long)bx->cnt[0];                              \
     const long j0 = (long)bx->lo[1], j1 = j0 + (long)bx->cnt[1];                              \
     const long k0 = (long)bx->lo[2], k1 = k0 + (long)bx->cnt[2];                              \
-    const int nt = s->n_threads;                                                              \
-    const size_t work = bx->cnt[0] * bx->cnt[1] * bx->cnt[2];                                 \
     (void)cbv; (void)cav; (void)cb0; (void)ca0; (void)ix; (void)iy; (void)iz;                 \
-    YEE_OMP(omp parallel for collapse(2) schedule(static) num_threads(nt)                     \
-                if (work > YEE_OMP_MIN))                                                      \
+    YEE_OMP(omp for collapse(2) schedule(static) nowait)                                      \
     for (long k = k0; k < k1; ++k)                                                            \
       for (long j = j0; j < j1; ++j) {                                                        \
         const long row = (long)yee_idx(&s->L, 0, j, k);                                       \
+        YEE_OMP(omp simd)                                                                     \
         for (long i = i0; i < i1; ++i) {                                                      \
           const long q = row + i;                                                             \
           const double curl = (Hc[q] - Hc[q - sb]) * (INVB) - (Hb[q] - Hb[q - sc]) * (INVC);  \
@@ -52,8 +52,7 @@
   }
 
 #define H_KERNEL(NAME, A, B, C, INVB, INVC, UPDATE)                                           \
-  static void NAME(gm_yee *s, int p) {                                                        \
-    const yee_box *bx = &s->upd[3 + A];                                                       \
+  static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
     double *restrict H = s->f[p][3 + A];                                                      \
     const double *restrict Ec = s->f[p][C];                                                   \
     const double *restrict Eb = s->f[p][B];                                                   \
@@ -65,14 +64,12 @@
     const long i0 = (long)bx->lo[0], i1 = i0 + (long)bx->cnt[0];                              \
     const long j0 = (long)bx->lo[1], j1 = j0 + (long)bx->cnt[1];                              \
     const long k0 = (long)bx->lo[2], k1 = k0 + (long)bx->cnt[2];                              \
-    const int nt = s->n_threads;                                                              \
-    const size_t work = bx->cnt[0] * bx->cnt[1] * bx->cnt[2];                                 \
     (void)cbv; (void)cb0; (void)ix; (void)iy; (void)iz;                                       \
-    YEE_OMP(omp parallel for collapse(2) schedule(static) num_threads(nt)                     \
-                if (work > YEE_OMP_MIN))                                                      \
+    YEE_OMP(omp for collapse(2) schedule(static) nowait)                                      \
     for (long k = k0; k < k1; ++k)                                                            \
       for (long j = j0; j < j1; ++j) {                                                        \
         const long row = (long)yee_idx(&s->L, 0, j, k);                                       \
+        YEE_OMP(omp simd)                                                                     \
         for (long i = i0; i < i1; ++i) {                                                      \
           const long q = row + i;                                                             \
           const double curl = (Ec[q + sb] - Ec[q]) * (INVB) - (Eb[q + sc] - Eb[q]) * (INVC);  \
@@ -105,29 +102,175 @@ E_FAMILY(array_lossy, E_ARRAY_LOSSY)
 H_FAMILY(uniform, H_UNIFORM)
 H_FAMILY(array, H_ARRAY)
 
+/* 3-D: all three components of E (or H) in one sweep, so each array is streamed once per half
+ * step. Per element the arithmetic is exactly the single-component kernels' (same operations in
+ * the same order), so fused and unfused runs agree bitwise. */
+#define FUSED_E(NAME, UX, UY, UZ)                                                             \
+  static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
+    double *restrict Ex = s->f[p][0], *restrict Ey = s->f[p][1], *restrict Ez = s->f[p][2];   \
+    const double *restrict Hx = s->f[p][3], *restrict Hy = s->f[p][4];                        \
+    const double *restrict Hz = s->f[p][5];                                                   \
+    const long sx = s->s[0], sy = s->s[1], sz = s->s[2];                                      \
+    const double *restrict cbx = s->cb[0], *restrict cby = s->cb[1], *restrict cbz = s->cb[2]; \
+    const double *restrict cax = s->ca[0], *restrict cay = s->ca[1], *restrict caz = s->ca[2]; \
+    const double cb0x = s->cb0[0], cb0y = s->cb0[1], cb0z = s->cb0[2], ca0 = s->ca0;          \
+    const double *ix = s->inv_e[0] + s->L.offset[0], *iy = s->inv_e[1] + s->L.offset[1];      \
+    const double *iz = s->inv_e[2] + s->L.offset[2];                                          \
+    const long i0 = (long)bx->lo[0], i1 = i0 + (long)bx->cnt[0];                              \
+    const long j0 = (long)bx->lo[1], j1 = j0 + (long)bx->cnt[1];                              \
+    const long k0 = (long)bx->lo[2], k1 = k0 + (long)bx->cnt[2];                              \
+    (void)cbx; (void)cby; (void)cbz; (void)cax; (void)cay; (void)caz; (void)ca0;              \
+    (void)cb0x; (void)cb0y; (void)cb0z;                                                       \
+    YEE_OMP(omp for collapse(2) schedule(static) nowait)                                      \
+    for (long k = k0; k < k1; ++k)                                                            \
+      for (long j = j0; j < j1; ++j) {                                                        \
+        const long row = (long)yee_idx(&s->L, 0, j, k);                                       \
+        const double iyj = iy[j], izk = iz[k];                                                \
+        YEE_OMP(omp simd)                                                                     \
+        for (long i = i0; i < i1; ++i) {                                                      \
+          const long q = row + i;                                                             \
+          const double cx = (Hz[q] - Hz[q - sy]) * iyj - (Hy[q] - Hy[q - sz]) * izk;          \
+          const double cy = (Hx[q] - Hx[q - sz]) * izk - (Hz[q] - Hz[q - sx]) * ix[i];        \
+          const double cz = (Hy[q] - Hy[q - sx]) * ix[i] - (Hx[q] - Hx[q - sy]) * iyj;        \
+          UX;                                                                                 \
+          UY;                                                                                 \
+          UZ;                                                                                 \
+        }                                                                                     \
+      }                                                                                       \
+  }
+
+#define FUSED_H(NAME, UX, UY, UZ)                                                             \
+  static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
+    double *restrict Hx = s->f[p][3], *restrict Hy = s->f[p][4], *restrict Hz = s->f[p][5];   \
+    const double *restrict Ex = s->f[p][0], *restrict Ey = s->f[p][1];                        \
+    const double *restrict Ez = s->f[p][2];                                                   \
+    const long sx = s->s[0], sy = s->s[1], sz = s->s[2];                                      \
+    const double *restrict cbx = s->cb[3], *restrict cby = s->cb[4], *restrict cbz = s->cb[5]; \
+    const double cb0x = s->cb0[3], cb0y = s->cb0[4], cb0z = s->cb0[5];                        \
+    const double *ix = s->inv_h[0] + s->L.offset[0], *iy = s->inv_h[1] + s->L.offset[1];      \
+    const double *iz = s->inv_h[2] + s->L.offset[2];                                          \
+    const long i0 = (long)bx->lo[0], i1 = i0 + (long)bx->cnt[0];                              \
+    const long j0 = (long)bx->lo[1], j1 = j0 + (long)bx->cnt[1];                              \
+    const long k0 = (long)bx->lo[2], k1 = k0 + (long)bx->cnt[2];                              \
+    (void)cbx; (void)cby; (void)cbz; (void)cb0x; (void)cb0y; (void)cb0z;                      \
+    YEE_OMP(omp for collapse(2) schedule(static) nowait)                                      \
+    for (long k = k0; k < k1; ++k)                                                            \
+      for (long j = j0; j < j1; ++j) {                                                        \
+        const long row = (long)yee_idx(&s->L, 0, j, k);                                       \
+        const double iyj = iy[j], izk = iz[k];                                                \
+        YEE_OMP(omp simd)                                                                     \
+        for (long i = i0; i < i1; ++i) {                                                      \
+          const long q = row + i;                                                             \
+          const double cx = (Ez[q + sy] - Ez[q]) * iyj - (Ey[q + sz] - Ey[q]) * izk;          \
+          const double cy = (Ex[q + sz] - Ex[q]) * izk - (Ez[q + sx] - Ez[q]) * ix[i];        \
+          const double cz = (Ey[q + sx] - Ey[q]) * ix[i] - (Ex[q + sy] - Ex[q]) * iyj;        \
+          UX;                                                                                 \
+          UY;                                                                                 \
+          UZ;                                                                                 \
+        }                                                                                     \
+      }                                                                                       \
+  }
+
+FUSED_E(e3_uniform, Ex[q] += cb0x * cx, Ey[q] += cb0y * cy, Ez[q] += cb0z * cz)
+FUSED_E(e3_uniform_lossy, Ex[q] = ca0 * Ex[q] + cb0x * cx, Ey[q] = ca0 * Ey[q] + cb0y * cy,
+        Ez[q] = ca0 * Ez[q] + cb0z * cz)
+FUSED_E(e3_array, Ex[q] += cbx[q] * cx, Ey[q] += cby[q] * cy, Ez[q] += cbz[q] * cz)
+FUSED_E(e3_array_lossy, Ex[q] = cax[q] * Ex[q] + cbx[q] * cx,
+        Ey[q] = cay[q] * Ey[q] + cby[q] * cy, Ez[q] = caz[q] * Ez[q] + cbz[q] * cz)
+FUSED_H(h3_uniform, Hx[q] -= cb0x * cx, Hy[q] -= cb0y * cy, Hz[q] -= cb0z * cz)
+FUSED_H(h3_array, Hx[q] -= cbx[q] * cx, Hy[q] -= cby[q] * cy, Hz[q] -= cbz[q] * cz)
+
+/* The box the three components share, and each component's range minus it as ≤ 6 slabs. */
+static void split_ranges(gm_yee *s, int first, int fuse) {
+  yee_box in = s->upd[first];
+  for (int c = first; c < first + 3; ++c)
+    for (int a = 0; a < 3; ++a) {
+      const size_t lo = s->upd[c].lo[a] > in.lo[a] ? s->upd[c].lo[a] : in.lo[a];
+      const size_t hi_c = s->upd[c].lo[a] + s->upd[c].cnt[a], hi_i = in.lo[a] + in.cnt[a];
+      const size_t hi = hi_c < hi_i ? hi_c : hi_i;
+      in.lo[a] = lo;
+      in.cnt[a] = hi > lo ? hi - lo : 0;
+    }
+  const int empty = !fuse || in.cnt[0] == 0 || in.cnt[1] == 0 || in.cnt[2] == 0;
+  if (empty) memset(&in, 0, sizeof in);
+  s->fused_box[first / 3] = in;
+  for (int c = first; c < first + 3; ++c) {
+    s->n_rest[c] = 0;
+    yee_box cur = s->upd[c];
+    if (cur.cnt[0] == 0 || cur.cnt[1] == 0 || cur.cnt[2] == 0) continue;
+    if (empty) {
+      s->rest[c][s->n_rest[c]++] = cur;
+      continue;
+    }
+    for (int a = 0; a < 3; ++a) {
+      const size_t hi_c = cur.lo[a] + cur.cnt[a], hi_i = in.lo[a] + in.cnt[a];
+      if (cur.lo[a] < in.lo[a]) {
+        yee_box b = cur;
+        b.cnt[a] = in.lo[a] - cur.lo[a];
+        s->rest[c][s->n_rest[c]++] = b;
+      }
+      if (hi_c > hi_i) {
+        yee_box b = cur;
+        b.lo[a] = hi_i;
+        b.cnt[a] = hi_c - hi_i;
+        s->rest[c][s->n_rest[c]++] = b;
+      }
+      cur.lo[a] = in.lo[a];
+      cur.cnt[a] = in.cnt[a];
+    }
+  }
+}
+
 void yee_select_kernels(gm_yee *s) {
-  typedef void (*kernel)(gm_yee *, int);
+  typedef void (*kernel)(gm_yee *, int, const yee_box *);
   static const kernel e_tab[4][3] = {{ex_uniform, ey_uniform, ez_uniform},
                                      {ex_uniform_lossy, ey_uniform_lossy, ez_uniform_lossy},
                                      {ex_array, ey_array, ez_array},
                                      {ex_array_lossy, ey_array_lossy, ez_array_lossy}};
   static const kernel h_tab[2][3] = {{hx_uniform, hy_uniform, hz_uniform},
                                      {hx_array, hy_array, hz_array}};
+  static const kernel e3_tab[4] = {e3_uniform, e3_uniform_lossy, e3_array, e3_array_lossy};
+  static const kernel h3_tab[2] = {h3_uniform, h3_array};
   const int row = (s->uniform ? 0 : 2) + (s->lossy ? 1 : 0);
   for (int a = 0; a < 3; ++a) {
     s->update_e[a] = s->active[a] ? e_tab[row][a] : NULL;
     s->update_h[a] = s->active[3 + a] ? h_tab[s->uniform ? 0 : 1][a] : NULL;
   }
+  const int fuse = s->L.dim == GM_YEE_3D;
+  s->fused_e = fuse ? e3_tab[row] : NULL;
+  s->fused_h = fuse ? h3_tab[s->uniform ? 0 : 1] : NULL;
+  split_ranges(s, 0, fuse);
+  split_ranges(s, 3, fuse);
 }
 
-void yee_update_e(gm_yee *s) {
-  for (int p = 0; p < s->n_parts; ++p)
-    for (int a = 0; a < 3; ++a)
-      if (s->update_e[a]) s->update_e[a](s, p);
+/* One parallel region per half step: the three components of a field do not read each other,
+ * so their loops run back to back without barriers (orphaned `omp for nowait` in the kernels);
+ * the region's end is the one barrier. */
+static size_t largest_box(const gm_yee *s, int first) {
+  size_t w = 0;
+  for (int c = first; c < first + 3; ++c) {
+    const size_t v = s->upd[c].cnt[0] * s->upd[c].cnt[1] * s->upd[c].cnt[2];
+    w = v > w ? v : w;
+  }
+  return w;
 }
 
-void yee_update_h(gm_yee *s) {
-  for (int p = 0; p < s->n_parts; ++p)
+static void update_field(gm_yee *s, int first) {
+  const int nt = s->n_threads;
+  const int big = largest_box(s, first) > YEE_OMP_MIN;
+  void (*const *one)(gm_yee *, int, const yee_box *) = first == 0 ? s->update_e : s->update_h;
+  void (*fused)(gm_yee *, int, const yee_box *) = first == 0 ? s->fused_e : s->fused_h;
+  const yee_box *fb = &s->fused_box[first / 3];
+  (void)nt;
+  (void)big;
+  YEE_OMP(omp parallel num_threads(nt) if (big))
+  for (int p = 0; p < s->n_parts; ++p) {
+    if (fused != NULL && fb->cnt[0] > 0) fused(s, p, fb);
     for (int a = 0; a < 3; ++a)
-      if (s->update_h[a]) s->update_h[a](s, p);
+      if (one[a] != NULL)
+        for (size_t r = 0; r < s->n_rest[first + a]; ++r) one[a](s, p, &s->rest[first + a][r]);
+  }
 }
+
+void yee_update_e(gm_yee *s) { update_field(s, 0); }
+void yee_update_h(gm_yee *s) { update_field(s, 3); }
