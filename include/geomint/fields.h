@@ -392,10 +392,12 @@ gm_status gm_yee_gauss(const gm_yee *solver, double *out, double *max_abs);
 /* Total charge Σ ρ V moved by the currents so far. */
 double gm_yee_charge(const gm_yee *solver);
 
-/* Poynting flux ∫ (E × H)·n dA through the primal vertex plane `index` (0..n) normal to axis,
- * with E^{n−½} and H averaged to t_{n−½}, interpolated to common points in the plane. Positive
- * along +axis. Complex fields: the sum of the real parts' and the imaginary parts' fluxes
- * (Re(E × H̄)). */
+/* Poynting flux ∫ (E × H)·n dA through the primal vertex plane `index` (1..n−1) normal to
+ * axis, with E^{n−½} and H at t_{n−½} (the mean of H^n and the reconstructed H^{n−1}) averaged
+ * over the two faces beside the plane; E_b and H_c (and E_c, H_b) share their positions in the
+ * plane, so nothing else is interpolated. Positive along +axis. Its time sum equals the change
+ * of the leapfrog energy on either side (the discrete Poynting theorem) away from sources and
+ * CPML. Complex fields: the sum of the real parts' and the imaginary parts' fluxes. */
 gm_status gm_yee_poynting_flux(const gm_yee *solver, int axis, size_t index, double *flux);
 
 /* ---- harminv: resonances of a signal (Mandelshtam & Taylor filter diagonalization) --------- */
