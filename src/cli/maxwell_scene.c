@@ -658,15 +658,17 @@ static int parse_fluxes(parser *p, const cJSON *root, mx_scene *s) {
       rc = -1;
     if (rc == 0) {
       const gm_yee_grid *g = &s->grid;
+      /* the solver's flux planes are the interior vertex planes 1 .. n−1 (fields.h) */
+      size_t na = g->n[fl->axis];
       double u = (fl->position - g->origin[fl->axis]) / g->h[fl->axis];
-      if (u < -0.5 || u > (double)g->n[fl->axis] + 0.5) {
+      if (!(u >= 0.5 && u < (double)na - 0.5)) {
         size_t o2 = push_key(p, "position");
-        rc = fail(p, "%g is outside the grid [%g, %g]", fl->position, g->origin[fl->axis],
-                  g->origin[fl->axis] + (double)g->n[fl->axis] * g->h[fl->axis]);
+        rc = fail(p, "%g is not inside the grid: a flux plane lies in [%g, %g]", fl->position,
+                  g->origin[fl->axis] + g->h[fl->axis],
+                  g->origin[fl->axis] + (double)(na - 1) * g->h[fl->axis]);
         pop(p, o2);
       } else {
-        fl->index = (size_t)floor(fmax(u, 0.0) + 0.5);
-        if (fl->index > g->n[fl->axis]) fl->index = g->n[fl->axis];
+        fl->index = (size_t)floor(u + 0.5);
         if (name != NULL && strpbrk(name, ",\"\n") == NULL)
           snprintf(fl->name, sizeof fl->name, "%s", name);
         else

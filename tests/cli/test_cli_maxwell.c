@@ -143,7 +143,9 @@ Test(cli_maxwell, malformed_scenes_name_the_json_path) {
       {"\"output\": {\"harminv\": {\"f_min\": 2, \"f_max\": 1}},", "{\"steps\": 10}",
        "output.harminv: expected 0 <= f_min < f_max"},
       {"\"flux\": [{\"axis\": \"x\", \"position\": 7}],", "{\"steps\": 10}",
-       "flux[0].position: 7 is outside the grid"},
+       "flux[0].position: 7 is not inside the grid: a flux plane lies in [0.05, 1.15]"},
+      {"\"flux\": [{\"axis\": \"y\", \"position\": 0.01}],", "{\"steps\": 10}",
+       "flux[0].position: 0.01 is not inside the grid"},
       {"\"bloch_k\": [0, \"1\", 0],", "{\"steps\": 10}", "bloch_k[1]: expected a number"},
   };
   for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
