@@ -3,6 +3,7 @@
 #define GM_CLI_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "geomint/geomint.h"
 
@@ -23,6 +24,7 @@ typedef struct cli_command {
 extern const cli_command cli_list_command, cli_run_command, cli_order_command,
     cli_demo_command, cli_wp_command, cli_mesh_command, cli_mimetic_command;
 extern const cli_command cli_oscillatory_command;
+extern const cli_command cli_maxwell_command; /* maxwell.c */
 
 /* "geomint COMMAND: message" on stderr, one line. */
 #if defined(__GNUC__)
@@ -207,5 +209,12 @@ typedef struct cli_xy_series {
 int cli_plot_loglog(const char *command, const char *png_path, const char *title,
                     const char *xlabel, const char *ylabel, const cli_xy_series *series,
                     size_t n_series);
+
+/* A plot of the caller's own: gnuplot gets the PNG terminal, png_path and the title, then
+ * whatever body(g, ctx) writes (settings, the plot command, inline data). Returns an exit
+ * status; prints the reason on failure. */
+typedef void (*cli_plot_body)(FILE *g, const void *ctx);
+int cli_plot_custom(const char *command, const char *png_path, const char *title,
+                    cli_plot_body body, const void *ctx);
 
 #endif

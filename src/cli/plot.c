@@ -230,3 +230,22 @@ int cli_plot_loglog(const char *command, const char *png_path, const char *title
   loglog_plot l = {title, xlabel, ylabel, series, n_series};
   return run_gnuplot(command, png_path, write_loglog_script, &l);
 }
+
+typedef struct custom_plot {
+  const char *title;
+  cli_plot_body body;
+  const void *ctx;
+} custom_plot;
+
+static void write_custom_script(FILE *g, const char *png_path, const void *ctx) {
+  const custom_plot *c = ctx;
+  write_preamble(g, png_path, c->title);
+  c->body(g, c->ctx);
+  fputs("\nset output\n", g);
+}
+
+int cli_plot_custom(const char *command, const char *png_path, const char *title,
+                    cli_plot_body body, const void *ctx) {
+  custom_plot c = {title, body, ctx};
+  return run_gnuplot(command, png_path, write_custom_script, &c);
+}
