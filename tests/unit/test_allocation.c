@@ -85,8 +85,7 @@ Test(allocation, explicit_rows_take_linear_memory) {
 }
 
 /* gauss-s with its default solver (fixed-point on positions for this q'' = f(q)): O(s·n);
- * simplified Newton builds the (sn)² stage matrix, so it takes it, but only when asked for
- * (checked on a smaller system: 20 bodies, sn = 480). */
+ * Newton's matrices only when asked for (checked on a smaller system: 20 bodies, sn = 480). */
 Test(allocation, implicit_rows_allocate_newton_only_when_asked) {
   big_problem b = n_body();
   const gm_method *gauss4 = gm_method_find("gauss-4");
@@ -99,11 +98,19 @@ Test(allocation, implicit_rows_allocate_newton_only_when_asked) {
   cr_assert_eq(gm_model_create("n-body", &small), GM_OK);
   cr_assert_eq(gm_model_set(small, "n", 20.0), GM_OK);
   cr_assert_eq(gm_model_build(small), GM_OK);
-  const size_t sn = 4 * gm_model_state_size(small);
-  const gm_scheme newton = {gauss4, NULL, GM_SOLVER_SIMPLIFIED_NEWTON, 0};
+  const size_t n = gm_model_state_size(small), sn = 4 * n;
+  const gm_scheme newton = {gauss4, NULL, GM_SOLVER_NEWTON, 0};
+  const gm_scheme simplified = {gauss4, NULL, GM_SOLVER_SIMPLIFIED_NEWTON, 0};
   size_t with_newton = bytes_to_create(&newton, gm_model_problem(small));
+  size_t with_simplified = bytes_to_create(&simplified, gm_model_problem(small));
   size_t without = bytes_to_create(&fixed, gm_model_problem(small));
+  /* full Newton: the (sn)² matrix; simplified Newton through the eigenvalues of A: two
+   * complex n×n factors (s/2 = 2 pairs) and the n×n Jacobian with the Hessian work */
   cr_expect_geq(with_newton, sn * sn * sizeof(double), "newton: %zu bytes", with_newton);
+  cr_expect_leq(with_simplified, (2 * 16 + 3 * 8) * n * n + 65536, "simplified: %zu bytes",
+                with_simplified);
+  cr_expect_lt(with_simplified, sn * sn * sizeof(double) / 2, "simplified: %zu bytes",
+               with_simplified);
   cr_expect_lt(without, sn * sn * sizeof(double) / 8, "default: %zu bytes", without);
   gm_model_free(small);
 }
