@@ -105,3 +105,22 @@ Test(stage_solvers, solar_system_evaluations_per_step) {
   cr_expect_leq(diff, 1e-11, "default vs simplified Newton after 1600 steps: %.2e", diff);
   gm_model_free(tm.model);
 }
+
+/* vi-galerkin-gauss-s on a separable problem takes Gauss collocation's fast path by default;
+ * with Newton it runs its own variational engine: both give the same trajectory. */
+Test(stage_solvers, galerkin_fast_path_equals_its_engine) {
+  test_model tm = test_model_make("kepler");
+  for (int s = 2; s <= 5; ++s) {
+    char name[32];
+    snprintf(name, sizeof name, "vi-galerkin-gauss-%d", s);
+    double y_fast[64], y_engine[64];
+    gm_stats st_fast;
+    run_with(name, GM_SOLVER_DEFAULT, &tm, 100, 0.05, y_fast, &st_fast);
+    run_with(name, GM_SOLVER_NEWTON, &tm, 100, 0.05, y_engine, NULL);
+    cr_expect_gt(st_fast.fixed_point_iterations, 0, "%s: no fixed-point iterations", name);
+    const double diff = max_diff(tm.n, y_fast, y_engine);
+    cr_expect_leq(diff, 1e-12 * gm_norm_inf_test(tm.n, y_engine), "%s: fast path vs engine %.2e",
+                  name, diff);
+  }
+  gm_model_free(tm.model);
+}
