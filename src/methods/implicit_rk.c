@@ -362,7 +362,8 @@ static gm_status solve_fixed_point(implicit_rk_work *w) {
     it->stats.fixed_point_iterations++;
     if (!isfinite(change))
       return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
-                     "fixed-point iteration produced a non-finite stage");
+                     "fixed-point iteration diverged (a non-finite stage); for a stiff problem use "
+                     "--solver simplified-newton");
     push_change(history, change);
     if (iteration_converged(history, ROUNDOFF_FLOOR)) return GM_OK;
   }
@@ -394,7 +395,8 @@ static gm_status step_positions(implicit_rk_work *w, double *y_new, double *delt
     }
     if (++iter > FIXED_POINT_MAX_ITERATIONS)
       return gm_fail(it->errmsg, sizeof it->errmsg, GM_ENOCONV,
-                     "fixed-point iteration on positions did not converge in %d iterations",
+                     "fixed-point iteration on positions did not converge in %d iterations; "
+                     "for a stiff problem use --solver simplified-newton",
                      FIXED_POINT_MAX_ITERATIONS);
     it->stats.fixed_point_iterations++;
     double change = 0.0, scale = size_q; /* q may be 0: then the stages give the scale */
@@ -410,7 +412,8 @@ static gm_status step_positions(implicit_rk_work *w, double *y_new, double *delt
     const double floor = ROUNDOFF_FLOOR * fmax(scale, 1e-300);
     if (!isfinite(change))
       return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
-                     "fixed-point iteration produced a non-finite stage");
+                     "fixed-point iteration diverged (a non-finite stage); for a stiff problem use "
+                     "--solver simplified-newton");
     push_change(history, change);
     if (iteration_converged(history, floor)) break;
   }
