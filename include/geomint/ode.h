@@ -203,7 +203,9 @@ typedef struct gm_stats {
 
 /* How implicit methods solve their stage equations. */
 typedef enum gm_solver {
-  GM_SOLVER_DEFAULT = 0,            /* simplified Newton */
+  GM_SOLVER_DEFAULT = 0,            /* chosen by the problem's kind: fixed-point-positions for
+                                       q'' = f(q) with a Runge–Kutta method, else fixed-point
+                                       (Newton only when asked for: stiff problems) */
   GM_SOLVER_NEWTON,                 /* full Newton: Jacobians at every stage and iteration */
   GM_SOLVER_SIMPLIFIED_NEWTON,      /* one Jacobian at y_n and one LU of I − hA⊗J per step */
   GM_SOLVER_FIXED_POINT,            /* fixed-point iteration, starting from the previous step's
@@ -236,6 +238,9 @@ gm_status gm_integrator_set_state(gm_integrator *it, double t, const double *y);
  * GM_EUNSUPPORTED for explicit methods, or for GM_SOLVER_FIXED_POINT_POSITIONS when the
  * method is not a Runge–Kutta method or the problem is not separable with quadratic T. */
 gm_status gm_integrator_set_solver(gm_integrator *it, gm_solver solver);
+/* The solver in use: Runge–Kutta methods (also inside a composition) report the one they chose
+ * for GM_SOLVER_DEFAULT; other families report what was set; explicit methods the default. */
+gm_solver gm_integrator_solver(const gm_integrator *it);
 /* A method with its choices: the basic method of a composition (NULL: the row's default; it
  * must be symmetric of order 2: verlet, midpoint, lobatto-iiia-iiib-2, ...), the solver of
  * implicit stages, and compensated summation. */

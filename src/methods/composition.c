@@ -93,7 +93,7 @@ static gm_status set_solver(gm_integrator *it, gm_solver solver) {
   composition_work *w = it->work;
   gm_status st = gm_integrator_set_solver(w->inner, solver);
   if (st != GM_OK) gm_fail(it->errmsg, sizeof it->errmsg, st, "%s", w->inner->errmsg);
-  else it->solver = solver;
+  else it->solver = w->inner->solver; /* the one the basic method chose */
   return st;
 }
 

@@ -68,7 +68,8 @@ static gm_status init(gm_integrator *it) {
   if (!w->structure || !w->jac || !w->gbar || !w->grad || !w->point || !w->point2 ||
       !w->delta || !w->delta_prev || !w->next)
     return GM_ENOMEM;
-  gm_status st = set_rule(w, AVF_DEFAULT_POINTS);
+  gm_status st = gm_jacobian_work(it); /* its Newton solver evaluates Jacobians */
+  if (st == GM_OK) st = set_rule(w, AVF_DEFAULT_POINTS);
   if (st == GM_OK) st = gm_gauss_legendre(SEGMENT_POINTS, w->seg_s, w->seg_w);
   if (st != GM_OK) return st;
   gm_quadrature_map(SEGMENT_POINTS, 0.0, 1.0, w->seg_s, w->seg_w);

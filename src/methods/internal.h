@@ -61,6 +61,24 @@ gm_status gm_stage_solve_failed(gm_integrator *it, gm_status status, double t, d
  * polynomial extrapolated to the new stages. */
 void gm_stage_extrapolate(size_t s, size_t m, const double *e, const double *z_prev, double *z);
 
+/* The eigen-decomposition A⁻¹ = V Λ V⁻¹ of a Runge–Kutta matrix, one block per real eigenvalue
+ * and per conjugate pair (stage_transform.c): simplified Newton on s/2 complex systems of size n
+ * instead of one of size sn. lambda[b]: eigenvalue of A⁻¹ of block b (Im > 0 for a pair);
+ * v: s × n_blocks, column b the eigenvector (doubled for a pair, so that ΔZ_i = Re Σ_b v_ib ΔW_b);
+ * vinv: n_blocks × s, the matching rows of V⁻¹; ainv: A⁻¹ (s×s). All owned. */
+typedef struct gm_stage_transform {
+  size_t s, n_blocks, n_real, n_pairs;
+  _Complex double *lambda, *v, *vinv;
+  double *ainv;
+} gm_stage_transform;
+/* GM_ESINGULAR when A is singular (Lobatto IIIA), GM_ENOCONV when dgeev fails. */
+gm_status gm_stage_transform_create(size_t s, const double *a, gm_stage_transform **out);
+void gm_stage_transform_free(gm_stage_transform *t);
+/* Complex LU with partial pivoting of the row-major n×n a, in place, U's diagonal inverted
+ * (GM_ESINGULAR on a zero pivot), and the solve of a x = b with it (b overwritten). Neither allocates. */
+gm_status gm_complex_lu_factor(size_t n, _Complex double *a, int *piv);
+void gm_complex_lu_solve(size_t n, const _Complex double *lu, const int *piv, _Complex double *b);
+
 /* Steppers, one per family. */
 extern const gm_stepper gm_explicit_rk_stepper;
 extern const gm_stepper gm_splitting_stepper;

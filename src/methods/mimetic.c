@@ -212,7 +212,9 @@ static gm_status init(gm_integrator *it) {
   w->p = p;
   w->galerkin = gm_mimetic_is_galerkin(m);
   w->n_quad = 2 * p + 6;
-  gm_status st = gm_time_element_create(p, &w->el, &err);
+  gm_status st = gm_jacobian_work(it); /* its Newton solvers evaluate Jacobians */
+  if (st != GM_OK) return st;
+  st = gm_time_element_create(p, &w->el, &err);
   if (st != GM_OK) return gm_fail(it->errmsg, sizeof it->errmsg, st, "%s: %s", m->name, err.message);
   w->k = calloc(p * p, sizeof(double));
   w->extrap = calloc(p * p, sizeof(double));

@@ -90,14 +90,12 @@ static gm_status create(const gm_method *method, const gm_method *basic,
   it->delta = alloc_doubles(n);
   it->carry = alloc_doubles(n);
   it->carry_next = alloc_doubles(n);
-  it->fd_y = alloc_doubles(n);
-  it->fd_fp = alloc_doubles(n);
-  it->fd_fm = alloc_doubles(n);
-  it->hess = alloc_doubles(n * n);
+  /* O(n) here; the n×n Jacobian work only for a stepper that asks (gm_jacobian_work), and S(y)
+   * only for Poisson problems, whose right-hand side needs it. */
   it->structure = alloc_doubles(problem->kind == GM_PROBLEM_POISSON ? n * n : 1);
   it->gradient = alloc_doubles(n);
-  if (!it->y || !it->y_next || !it->delta || !it->carry || !it->carry_next || !it->fd_y ||
-      !it->fd_fp || !it->fd_fm || !it->hess || !it->structure || !it->gradient) {
+  if (!it->y || !it->y_next || !it->delta || !it->carry || !it->carry_next || !it->structure ||
+      !it->gradient) {
     gm_integrator_free(it);
     return gm_error_set(err, GM_ENOMEM, "out of memory for a state of size %zu", n);
   }
@@ -109,6 +107,23 @@ static gm_status create(const gm_method *method, const gm_method *basic,
   }
   *out = it;
   return GM_OK;
+}
+
+gm_status gm_jacobian_work(gm_integrator *it) {
+  const size_t n = it->n;
+  if (it->hess != NULL) return GM_OK;
+  it->fd_y = alloc_doubles(n);
+  it->fd_fp = alloc_doubles(n);
+  it->fd_fm = alloc_doubles(n);
+  it->hess = alloc_doubles(n * n);
+  if (it->fd_y && it->fd_fp && it->fd_fm && it->hess) return GM_OK;
+  free(it->fd_y);
+  free(it->fd_fp);
+  free(it->fd_fm);
+  free(it->hess);
+  it->fd_y = it->fd_fp = it->fd_fm = it->hess = NULL;
+  return gm_fail(it->errmsg, sizeof it->errmsg, GM_ENOMEM,
+                 "out of memory for the %zu x %zu Jacobian of '%s'", n, n, it->method->name);
 }
 
 gm_status gm_integrator_create(const gm_method *method, const gm_problem *problem,
@@ -158,6 +173,10 @@ gm_status gm_integrator_set_solver(gm_integrator *it, gm_solver solver) {
                    "method '%s' is explicit: it has no stage equations to solve", it->method->name);
   }
   return it->stepper->set_solver(it, solver);
+}
+
+gm_solver gm_integrator_solver(const gm_integrator *it) {
+  return it != NULL ? it->solver : GM_SOLVER_DEFAULT;
 }
 
 static const char *const solver_names[] = {"default", "newton", "simplified-newton", "fixed-point",

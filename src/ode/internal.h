@@ -57,7 +57,7 @@ struct gm_integrator {
   gm_observer_entry *observers;
   size_t n_observers;
   gm_stats stats;
-  /* finite-difference Jacobian work (allocated at create when no analytic one exists) */
+  /* Jacobian work: NULL until a stepper that evaluates Jacobians asks (gm_jacobian_work) */
   double *fd_y, *fd_fp, *fd_fm;
   double *hess;               /* 2d×2d Hessian of H (Hamiltonian kinds with a Hessian) */
   double *structure, *gradient; /* Poisson: S(y) (n×n) and ∇H(y) (n) */
@@ -116,6 +116,10 @@ gm_status gm_eval_poisson_energy(gm_integrator *it, double t, const double *y, d
 gm_status gm_eval_poisson_gradient(gm_integrator *it, double t, const double *y, double *g);
 gm_status gm_eval_poisson_structure(gm_integrator *it, double t, const double *y, double *s);
 int gm_poisson_structure_is_constant(const gm_problem *problem);
+/* Allocate the work gm_eval_rhs_jacobian needs (an n×n Hessian, 3n for differences), once:
+ * steppers call it from init or set_solver when their solver uses Jacobians, never in a step.
+ * Explicit methods never do, so their memory stays O(n). */
+gm_status gm_jacobian_work(gm_integrator *it);
 /* Does the problem provide an analytic Jacobian in its kind? */
 int gm_problem_has_jacobian(const gm_problem *problem);
 

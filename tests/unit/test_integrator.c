@@ -220,6 +220,9 @@ Test(integrator, hamiltonian_path_with_and_without_hessian) {
   double y0[2] = {0.8, -0.3};
   gm_integrator *a = test_integrator(gm_method_find("midpoint"), &with, 0.0, y0);
   gm_integrator *b = test_integrator(gm_method_find("midpoint"), &without, 0.0, y0);
+  /* the Jacobian paths: Newton (the default solver is fixed-point) */
+  cr_assert_eq(gm_integrator_set_solver(a, GM_SOLVER_SIMPLIFIED_NEWTON), GM_OK);
+  cr_assert_eq(gm_integrator_set_solver(b, GM_SOLVER_SIMPLIFIED_NEWTON), GM_OK);
   cr_assert_eq(gm_integrator_run(a, 200, 0.05), GM_OK, "%s", gm_integrator_errmsg(a));
   cr_assert_eq(gm_integrator_run(b, 200, 0.05), GM_OK, "%s", gm_integrator_errmsg(b));
   for (size_t i = 0; i < 2; ++i)
