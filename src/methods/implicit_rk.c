@@ -184,9 +184,13 @@ static gm_status set_solver(gm_integrator *it, gm_solver solver) {
                    "separable problem with quadratic kinetic energy (kinetic_is_quadratic)",
                    it->method->name);
   /* The default, by measurement (docs/work-precision.md): positions where possible, else
-   * fixed-point; both need no Jacobian. */
+   * fixed-point; both need no Jacobian. A problem that declares a fast potential W (a split
+   * U + W, geomint/oscillatory.h) is stiff by that declaration: fixed-point iteration diverges
+   * once h‖Ω‖ ≳ 2 (midpoint on toy-resonance, ω = 10, h = 0.2), so it gets simplified Newton. */
   if (solver == GM_SOLVER_DEFAULT)
-    solver = positions_possible(it) ? GM_SOLVER_FIXED_POINT_POSITIONS : GM_SOLVER_FIXED_POINT;
+    solver = it->problem->split != NULL      ? GM_SOLVER_SIMPLIFIED_NEWTON
+             : positions_possible(it)        ? GM_SOLVER_FIXED_POINT_POSITIONS
+                                             : GM_SOLVER_FIXED_POINT;
   if (solver == GM_SOLVER_NEWTON || solver == GM_SOLVER_SIMPLIFIED_NEWTON) {
     gm_status st = newton_work(it, w, solver);
     if (st != GM_OK) return st;
@@ -641,20 +645,46 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
 const gm_stepper gm_implicit_rk_stepper = {init, step, release, invalidate, NULL, set_solver};
 
 /* Checkpoints: the previous step's stage increments and step size, from which the next step
- * starts its iteration (collocation polynomial extrapolated). */
+ * starts its iteration (collocation polynomial extrapolated); with simplified Newton through the
+ * eigenvalues of A also the kept Jacobian, its step size and whether it is stale (the factors
+ * are recomputed from them on load: the same J gives the same factors). */
+static size_t newton_state_doubles(const gm_integrator *it, const implicit_rk_work *w) {
+  return w->tr != NULL ? 2 + it->n * it->n : 0;
+}
 static size_t state_size(const gm_integrator *it) {
   const implicit_rk_work *w = it->work;
-  return sizeof(double) * (1 + w->tab->n_stages * it->n);
+  return sizeof(double) * (1 + w->tab->n_stages * it->n + newton_state_doubles(it, w));
 }
 static void state_save(const gm_integrator *it, unsigned char *out) {
   const implicit_rk_work *w = it->work;
+  const size_t nz = w->tab->n_stages * it->n;
   memcpy(out, &w->h_prev, sizeof(double));
-  memcpy(out + sizeof(double), w->z_prev, sizeof(double) * w->tab->n_stages * it->n);
+  memcpy(out + sizeof(double), w->z_prev, sizeof(double) * nz);
+  if (newton_state_doubles(it, w) > 0) {
+    unsigned char *p = out + sizeof(double) * (1 + nz);
+    const double head[2] = {w->lu_h, w->jac_stale ? 1.0 : 0.0};
+    memcpy(p, head, sizeof head);
+    memcpy(p + sizeof head, w->jac, sizeof(double) * it->n * it->n);
+  }
 }
 static gm_status state_load(gm_integrator *it, const unsigned char *in) {
   implicit_rk_work *w = it->work;
+  const size_t nz = w->tab->n_stages * it->n;
   memcpy(&w->h_prev, in, sizeof(double));
-  memcpy(w->z_prev, in + sizeof(double), sizeof(double) * w->tab->n_stages * it->n);
+  memcpy(w->z_prev, in + sizeof(double), sizeof(double) * nz);
+  if (newton_state_doubles(it, w) > 0) {
+    const unsigned char *p = in + sizeof(double) * (1 + nz);
+    double head[2];
+    memcpy(head, p, sizeof head);
+    memcpy(w->jac, p + sizeof head, sizeof(double) * it->n * it->n);
+    w->jac_stale = head[1] != 0.0;
+    w->lu_h = 0.0;
+    if (head[0] != 0.0) {
+      w->it = it;
+      w->h = head[0];
+      return factor_blocks(w, 0);
+    }
+  }
   return GM_OK;
 }
 const gm_stepper_state gm_implicit_rk_stepper_state = {0, state_size, state_save, state_load};

@@ -257,9 +257,16 @@ gm_status gm_variational_set_alpha(gm_integrator *it, double alpha) {
 
 /* Checkpoints: the previous step's control points and multipliers and its size, the starting
  * values of the next step. */
+/* The fast path's Gauss integrator keeps its own starting values: saved after ours. */
+static size_t inner_size(const vi_work *w) {
+  if (w->gauss == NULL) return 0;
+  const gm_stepper_state *inner = gm_stepper_state_of(w->gauss->stepper);
+  return inner != NULL && inner->size != NULL ? inner->size(w->gauss) : 0;
+}
 static size_t state_size(const gm_integrator *it) {
   const vi_work *w = it->work;
-  return sizeof(double) * (2 + (w->degree * it->dim + 1) + (w->degree * w->e.m + 1));
+  return sizeof(double) * (2 + (w->degree * it->dim + 1) + (w->degree * w->e.m + 1)) +
+         inner_size(w);
 }
 static void state_save(const gm_integrator *it, unsigned char *out) {
   const vi_work *w = it->work;
@@ -268,6 +275,9 @@ static void state_save(const gm_integrator *it, unsigned char *out) {
   memcpy(out, head, sizeof head);
   memcpy(out + sizeof head, w->z_prev, nz * sizeof(double));
   memcpy(out + sizeof head + nz * sizeof(double), w->lam_prev, nl * sizeof(double));
+  if (inner_size(w) > 0)
+    gm_stepper_state_of(w->gauss->stepper)
+        ->save(w->gauss, out + sizeof head + (nz + nl) * sizeof(double));
 }
 static gm_status state_load(gm_integrator *it, const unsigned char *in) {
   vi_work *w = it->work;
@@ -278,6 +288,9 @@ static gm_status state_load(gm_integrator *it, const unsigned char *in) {
   w->h_prev = head[1];
   memcpy(w->z_prev, in + sizeof head, nz * sizeof(double));
   memcpy(w->lam_prev, in + sizeof head + nz * sizeof(double), nl * sizeof(double));
+  if (inner_size(w) > 0)
+    return gm_stepper_state_of(w->gauss->stepper)
+        ->load(w->gauss, in + sizeof head + (nz + nl) * sizeof(double));
   return GM_OK;
 }
 const gm_stepper_state gm_variational_stepper_state = {0, state_size, state_save, state_load};

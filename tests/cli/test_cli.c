@@ -468,7 +468,7 @@ Test(cli, run_failure_keeps_csv) {
   run_output r = run_cli("run kepler --method midpoint --set p2=0 --out fall.csv --json");
   cr_assert_eq(r.status, 1, "exit %d, stderr %s", r.status, r.err);
   cJSON *o = parse_json(r.out); /* one JSON object with the error and the partial statistics */
-  cr_assert(strstr(json_string(o, "error"), "Newton") != NULL, "%s", r.out);
+  cr_assert(strstr(json_string(o, "error"), "did not converge") != NULL, "%s", r.out);
   cr_assert_gt(json_number(o, "steps"), 10);
   cJSON_Delete(o);
   cr_assert_eq(count_lines(r.err), 1, "%s", r.err);
