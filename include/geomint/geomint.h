@@ -12,6 +12,7 @@
 #include "geomint/mesh.h"
 #include "geomint/mimetic.h"
 #include "geomint/variational.h"
+#include "geomint/reduction.h"
 
 #define GM_VERSION_MAJOR 0
 #define GM_VERSION_MINOR 1
