@@ -213,3 +213,102 @@ Test(routh, dsp_metric_derivative_matches_differences) {
   cr_assert_eq(gm_routh_connection(&fd, mu, x, NULL, NULL, k2, dfa, NULL, NULL, NULL), GM_OK);
   for (int i = 0; i < 9; ++i) cr_expect(fabs(da[i] - dfa[i]) < 1e-8, "dA[%d] %.12g vs %.12g", i, da[i], dfa[i]);
 }
+
+/* Thm 2.17, forces: midpoint forces F̂¹ = F̂² = −(h/2)∇W(x̄) give the same DR step as adding W to
+ * the potential (the midpoint L_d of V + W differs by −hW(x̄)) */
+typedef struct {
+  gm_routh_system base;
+  double c;
+} with_field;
+static double wf_potential(void *ctx, const double *x) {
+  const with_field *w = ctx;
+  return w->base.potential(w->base.ctx, x) + w->c * x[1];
+}
+static int wf_potential_dx(void *ctx, const double *x, double *g) {
+  const with_field *w = ctx;
+  if (w->base.potential_dx(w->base.ctx, x, g)) return 1;
+  g[1] += w->c;
+  return 0;
+}
+static int wf_metric(void *ctx, const double *x, double *m) {
+  const with_field *w = ctx;
+  return w->base.metric(w->base.ctx, x, m);
+}
+static int field_force(void *ctx, double h, const double *x0, const double *x1, double *f) {
+  (void)x0;
+  (void)x1;
+  f[0] = 0.0;
+  f[1] = -0.5 * h * ((const with_field *)ctx)->c;
+  return 0;
+}
+
+Test(routh, forces_in_the_discrete_routh_equations) {
+  with_field w;
+  gm_routh_j2_satellite(&j2p, &w.base);
+  w.c = 0.3;
+  gm_routh_system sw = {.k = 1, .n = 2, .ctx = &w, .metric = wf_metric, .metric_dx = NULL,
+                        .potential = wf_potential, .potential_dx = wf_potential_dx};
+  gm_discrete_lagrangian lw, lb;
+  gm_routh_midpoint_lagrangian(&sw, &lw);
+  gm_routh_midpoint_lagrangian(&w.base, &lb);
+  const double mu[1] = {1.2}, h = 0.1;
+  gm_routh_discrete_options opts = {.force1 = field_force, .force2 = field_force, .ctx = &w};
+  gm_routh_discrete *a = NULL, *b = NULL;
+  cr_assert_eq(gm_routh_discrete_create(&lw, &sw, mu, NULL, &a, NULL), GM_OK);
+  cr_assert_eq(gm_routh_discrete_create(&lb, &w.base, mu, &opts, &b, NULL), GM_OK);
+  double xm[2] = {1.5, 0.0}, x[2] = {1.502, 0.04}, xa[2] = {1.504, 0.08}, xb[2] = {1.504, 0.08};
+  double ta = 0, tb = 0;
+  cr_assert_eq(gm_routh_discrete_step(a, h, xm, x, xa, &ta, NULL), GM_OK, "%s", gm_routh_discrete_errmsg(a));
+  cr_assert_eq(gm_routh_discrete_step(b, h, xm, x, xb, &tb, NULL), GM_OK, "%s", gm_routh_discrete_errmsg(b));
+  const double e = fmax(fmax(fabs(xa[0] - xb[0]), fabs(xa[1] - xb[1])), fabs(ta - tb));
+  cr_log_info("forces: DR step with force vs with potential: %.3g", e);
+  cr_expect(e < 1e-11, "forced vs potential step differ by %.3g", e);
+  gm_routh_discrete_free(a);
+  gm_routh_discrete_free(b);
+}
+
+/* Thm 2.17, constraints: ĝ(x) = r − R on the equator; the orbit is the circle r = R, z = 0,
+ * θ advances by hμ/R² per step (midpoint: J_d = R²ψ/h) and the multiplier is the r-row of the
+ * DEL, λ = −h(μ²/R³ − ∂_rV(R, 0)), ∂_rV = 1/R² + 1.5 J2/R⁴ */
+static int circle_g(void *ctx, const double *x, double *g) {
+  g[0] = x[0] - *(const double *)ctx;
+  return 0;
+}
+static int circle_dg(void *ctx, const double *x, double *j) {
+  (void)ctx;
+  (void)x;
+  j[0] = 1.0;
+  j[1] = 0.0;
+  return 0;
+}
+
+Test(routh, constraints_in_the_discrete_routh_equations) {
+  gm_routh_system sys;
+  gm_routh_j2_satellite(&j2p, &sys);
+  gm_discrete_lagrangian ld;
+  gm_routh_midpoint_lagrangian(&sys, &ld);
+  double R = 1.3;
+  const double mu[1] = {0.9}, h = 0.2;
+  gm_routh_discrete_options opts = {.n_constraints = 1, .constraint = circle_g,
+                                    .constraint_jacobian = circle_dg, .ctx = &R};
+  gm_routh_discrete *d = NULL;
+  cr_assert_eq(gm_routh_discrete_create(&ld, &sys, mu, &opts, &d, NULL), GM_OK);
+  double xm[2] = {R, 0.0}, x[2] = {R, 0.0}, th = 0.0, lam = 0.0, worst_g = 0, worst_th = 0,
+         worst_l = 0;
+  const double lam_exact = -h * (mu[0] * mu[0] / (R * R * R) - 1.0 / (R * R) - 1.5 * j2p.j2 / (R * R * R * R));
+  for (int k = 0; k < 20; ++k) {
+    double xp[2] = {x[0] + 0.01, x[1]}, th0 = th;
+    cr_assert_eq(gm_routh_discrete_step(d, h, xm, x, xp, &th, &lam), GM_OK, "%s", gm_routh_discrete_errmsg(d));
+    worst_g = fmax(worst_g, fabs(xp[0] - R) + fabs(xp[1]));
+    worst_th = fmax(worst_th, fabs(th - th0 - h * mu[0] / (R * R)));
+    worst_l = fmax(worst_l, fabs(lam - lam_exact));
+    memcpy(xm, x, sizeof x);
+    memcpy(x, xp, sizeof x);
+  }
+  cr_log_info("constraints: |g| %.3g, theta increment %.3g, lambda %.3g (exact %.6f)", worst_g,
+              worst_th, worst_l, lam_exact);
+  cr_expect(worst_g < 1e-12, "constraint residual %.3g", worst_g);
+  cr_expect(worst_th < 1e-12, "theta increment error %.3g", worst_th);
+  cr_expect(worst_l < 1e-8, "multiplier error %.3g", worst_l);
+  gm_routh_discrete_free(d);
+}
