@@ -145,6 +145,14 @@ gm_status gm_routh_discrete_residual(gm_routh_discrete *d, double h, const doubl
 gm_status gm_routh_discrete_step(gm_routh_discrete *d, double h, const double *xm,
                                  const double *x, double *xp, double *theta, double *lambda);
 
+/* Holonomy of a closed shape loop: the group drift θ_N − θ_0 = Σ_i ψ_μ(x_i, x_{i+1}) of the
+ * discrete horizontal lift (μ = 0: of the discrete mechanical connection, J_d = 0, seed 001 §4
+ * and notes §1F; abelian G, so the order of the product does not matter). loop holds n_points
+ * shape points x_0..x_{N} (n values each) with x_N = x_0 up to 1e-12 (1 + |x_0|); GM_EINVAL
+ * "shape loop does not close" otherwise. angle gets k values. */
+gm_status gm_routh_holonomy(gm_routh_discrete *d, double h, size_t n_points, const double *loop,
+                            double *angle);
+
 /* ---- the two systems of seed 001 §2.9–2.10 ------------------------------------------------ */
 
 /* Satellite about an oblate planet in cylindrical coordinates θ; x = (r, z): M = diag(r², 1, 1),

@@ -375,3 +375,27 @@ gm_status gm_routh_discrete_step(gm_routh_discrete *d, double h, const double *x
     for (size_t c = 0; c < mc; ++c) lambda[c] = u[n + c];
   return GM_OK;
 }
+
+gm_status gm_routh_holonomy(gm_routh_discrete *d, double h, size_t n_points, const double *loop,
+                            double *angle) {
+  if (d == NULL || loop == NULL || angle == NULL || n_points < 3 || !(h > 0.0))
+    return GM_EINVAL;
+  const size_t k = d->sys.k, n = d->sys.n;
+  const double *first = loop, *last = loop + (n_points - 1) * n;
+  double gap = 0.0, size = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    gap = fmax(gap, fabs(last[i] - first[i]));
+    size = fmax(size, fabs(first[i]));
+  }
+  if (!(gap <= 1e-12 * (1.0 + size)))
+    return gm_fail(d->errmsg, sizeof d->errmsg, GM_EINVAL,
+                   "holonomy: the shape loop does not close: |x_N - x_0| = %.3g", gap);
+  for (size_t p = 0; p < k; ++p) angle[p] = 0.0;
+  for (size_t s = 0; s + 1 < n_points; ++s) {
+    double psi[GM_ROUTH_MAX_GROUP];
+    gm_status st = gm_routh_psi(d, h, loop + s * n, loop + (s + 1) * n, 0, psi);
+    if (st != GM_OK) return st;
+    for (size_t p = 0; p < k; ++p) angle[p] += psi[p];
+  }
+  return GM_OK;
+}

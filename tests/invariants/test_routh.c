@@ -312,3 +312,54 @@ Test(routh, constraints_in_the_discrete_routh_equations) {
   cr_expect(worst_l < 1e-8, "multiplier error %.3g", worst_l);
   gm_routh_discrete_free(d);
 }
+
+#define ROUTH_PI 3.14159265358979323846
+/* Holonomy of a shape loop of the double spherical pendulum at μ = 0 (the discrete mechanical
+ * connection of the midpoint L_d, J_d = 0): converges to the geometric phase −∮A(x)·dx with the
+ * order of L_d (2); reference by the 4096-point trapezoid rule in the loop parameter (spectral
+ * for a smooth periodic integrand). A loop that does not close is refused. */
+static void dsp_loop(double t, double *x, double *dx) {
+  x[0] = 0.5 + 0.2 * cos(t);
+  x[1] = 0.4 + 0.1 * sin(2 * t);
+  x[2] = 1.0 + 0.8 * sin(t);
+  if (dx) {
+    dx[0] = -0.2 * sin(t);
+    dx[1] = 0.2 * cos(2 * t);
+    dx[2] = 0.8 * cos(t);
+  }
+}
+
+Test(routh, holonomy_of_a_shape_loop_at_mu_zero) {
+  gm_routh_system sys;
+  gm_routh_double_spherical_pendulum(&dspp, &sys);
+  const double mu[1] = {0.0};
+  double exact = 0.0;
+  const int nref = 4096;
+  for (int i = 0; i < nref; ++i) {
+    double x[3], dx[3], a[3];
+    dsp_loop(2 * ROUTH_PI * i / nref, x, dx);
+    cr_assert_eq(gm_routh_connection(&sys, mu, x, NULL, a, NULL, NULL, NULL, NULL, NULL), GM_OK);
+    exact -= (a[0] * dx[0] + a[1] * dx[1] + a[2] * dx[2]) * 2 * ROUTH_PI / nref;
+  }
+  gm_discrete_lagrangian ld;
+  gm_routh_midpoint_lagrangian(&sys, &ld);
+  gm_routh_discrete *d = NULL;
+  cr_assert_eq(gm_routh_discrete_create(&ld, &sys, mu, NULL, &d, NULL), GM_OK);
+  double err[3];
+  for (int l = 0; l < 3; ++l) {
+    const size_t n = (size_t)16 << l;
+    double loop[(128 + 1) * 3], angle;
+    for (size_t i = 0; i <= n; ++i) dsp_loop(2 * ROUTH_PI * (double)(i % n) / (double)n, loop + 3 * i, NULL);
+    cr_assert_eq(gm_routh_holonomy(d, 0.1, n + 1, loop, &angle), GM_OK, "%s", gm_routh_discrete_errmsg(d));
+    err[l] = fabs(angle - exact);
+  }
+  const double p1 = log2(err[0] / err[1]), p2 = log2(err[1] / err[2]);
+  cr_log_info("holonomy: phase %.10f, errors %.3g %.3g %.3g, orders %.3f %.3f", exact, err[0],
+              err[1], err[2], p1, p2);
+  cr_expect(fabs(exact) > 0.05, "the loop encloses curvature: phase %.3g", exact);
+  cr_expect(fabs(p2 - 2.0) < 0.2, "holonomy order %.3f", p2);
+  double openloop[9] = {0.5, 0.4, 1.0, 0.6, 0.4, 1.0, 0.5, 0.4, 1.1}, a;
+  cr_expect_eq(gm_routh_holonomy(d, 0.1, 3, openloop, &a), GM_EINVAL);
+  cr_expect(strstr(gm_routh_discrete_errmsg(d), "does not close") != NULL, "%s", gm_routh_discrete_errmsg(d));
+  gm_routh_discrete_free(d);
+}
