@@ -363,3 +363,53 @@ Test(routh, holonomy_of_a_shape_loop_at_mu_zero) {
   cr_expect(strstr(gm_routh_discrete_errmsg(d), "does not close") != NULL, "%s", gm_routh_discrete_errmsg(d));
   gm_routh_discrete_free(d);
 }
+
+/* RSPRK and the classical SPRK with the tableaux of the registry's variational rows */
+Test(routh, rsprk_with_registry_rows) {
+  gm_routh_system sys;
+  gm_routh_double_spherical_pendulum(&dspp, &sys);
+  const double mu[1] = {0.8};
+  const char *rows[] = {"vi-midpoint", "vi-trapezoidal", "vi-galerkin-gauss-2",
+                        "vi-galerkin-lobatto-2", "vi-galerkin-gauss-3"};
+  for (size_t m = 0; m < sizeof rows / sizeof rows[0]; ++m) {
+    gm_tableau *t = NULL;
+    cr_assert_eq(gm_method_tableau(gm_method_find(rows[m]), &t), GM_OK, "%s", rows[m]);
+    gm_rsprk *a = NULL, *b = NULL;
+    cr_assert_eq(gm_rsprk_create(&sys, t, GM_ROUTH_RSPRK, mu, &a, NULL), GM_OK);
+    cr_assert_eq(gm_rsprk_create(&sys, t, GM_ROUTH_CLASSICAL, mu, &b, NULL), GM_OK);
+    double x[3] = {0.6, 0.5, 1.0}, s[3] = {0.1, -0.2, 0.3}, xc[3], y[3];
+    memcpy(xc, x, sizeof x);
+    cr_assert_eq(gm_routh_lift_momentum(&sys, mu, x, s, y, NULL), GM_OK);
+    const double e0 = gm_routh_energy(&sys, mu, x, s);
+    double worst = 0, de = 0;
+    for (int i = 0; i < 100; ++i) {
+      cr_assert_eq(gm_rsprk_step(a, 0.02, x, s, NULL), GM_OK, "%s: %s", rows[m], gm_rsprk_errmsg(a));
+      cr_assert_eq(gm_rsprk_step(b, 0.02, xc, y, NULL), GM_OK, "%s: %s", rows[m], gm_rsprk_errmsg(b));
+      double ys[3];
+      cr_assert_eq(gm_routh_lift_momentum(&sys, mu, x, s, ys, NULL), GM_OK);
+      for (int j = 0; j < 3; ++j) worst = fmax(worst, fmax(fabs(x[j] - xc[j]), fabs(ys[j] - y[j])));
+      de = fmax(de, fabs(gm_routh_energy(&sys, mu, x, s) - e0));
+    }
+    cr_log_info("%s: RSPRK vs classical %.3g, energy error %.3g", rows[m], worst, de);
+    cr_expect(worst < 1e-12, "%s: RSPRK vs classical SPRK differ by %.3g", rows[m], worst);
+    gm_rsprk_free(a);
+    gm_rsprk_free(b);
+    gm_tableau_free(t);
+  }
+}
+
+/* ψ_μ where the group-regularity fails (locked inertia r̄² = 0 at the step's midpoint): an
+ * error that names the shape points, not a wrong number */
+Test(routh, psi_group_regularity_failure_is_reported) {
+  gm_routh_system sys;
+  gm_routh_j2_satellite(&j2p, &sys);
+  gm_discrete_lagrangian ld;
+  gm_routh_midpoint_lagrangian(&sys, &ld);
+  const double mu[1] = {1.0}, x0[2] = {1.0, 0.5}, x1[2] = {-1.0, 0.5};
+  gm_routh_discrete *d = NULL;
+  cr_assert_eq(gm_routh_discrete_create(&ld, &sys, mu, NULL, &d, NULL), GM_OK);
+  double psi = 0.3;
+  cr_expect_eq(gm_routh_psi(d, 0.1, x0, x1, 1, &psi), GM_ENOCONV);
+  cr_expect(strstr(gm_routh_discrete_errmsg(d), "x0 = (1") != NULL, "%s", gm_routh_discrete_errmsg(d));
+  gm_routh_discrete_free(d);
+}
