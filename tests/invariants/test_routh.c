@@ -413,3 +413,40 @@ Test(routh, psi_group_regularity_failure_is_reported) {
   cr_expect(strstr(gm_routh_discrete_errmsg(d), "x0 = (1") != NULL, "%s", gm_routh_discrete_errmsg(d));
   gm_routh_discrete_free(d);
 }
+
+/* The discrete mechanical connection (J_d = 0, seed 001 ch. 4; notes §1F): ψ_0(x0, x1) of the
+ * midpoint L_d against the exact group increment of the μ = 0 flow from x0 to x1 = x(h)
+ * (RSPRK with 3 Gauss points on 20 substeps): a local error O(h^{r+1}), r = 2 the order of L_d */
+Test(routh, discrete_mechanical_connection_order) {
+  gm_routh_system sys;
+  gm_routh_double_spherical_pendulum(&dspp, &sys);
+  const double mu[1] = {0.0};
+  gm_tableau *t = galerkin(3);
+  gm_rsprk *r = NULL;
+  cr_assert_eq(gm_rsprk_create(&sys, t, GM_ROUTH_RSPRK, mu, &r, NULL), GM_OK);
+  gm_discrete_lagrangian ld;
+  gm_routh_midpoint_lagrangian(&sys, &ld);
+  gm_routh_discrete *d = NULL;
+  cr_assert_eq(gm_routh_discrete_create(&ld, &sys, mu, NULL, &d, NULL), GM_OK);
+  const double x0[3] = {0.6, 0.5, 1.0}, xd[3] = {0.3, -0.2, 0.5};
+  double kin[9], s0[3];
+  cr_assert_eq(gm_routh_connection(&sys, mu, x0, NULL, NULL, kin, NULL, NULL, NULL, NULL), GM_OK);
+  for (int i = 0; i < 3; ++i) s0[i] = kin[3 * i] * xd[0] + kin[3 * i + 1] * xd[1] + kin[3 * i + 2] * xd[2];
+  double err[3];
+  for (int l = 0; l < 3; ++l) {
+    const double h = 0.1 / (double)(1 << l);
+    double x[3], s[3], th = 0.0, psi;
+    memcpy(x, x0, sizeof x);
+    memcpy(s, s0, sizeof s);
+    for (int k = 0; k < 20; ++k) cr_assert_eq(gm_rsprk_step(r, h / 20, x, s, &th), GM_OK);
+    cr_assert_eq(gm_routh_psi(d, h, x0, x, 0, &psi), GM_OK, "%s", gm_routh_discrete_errmsg(d));
+    err[l] = fabs(psi - th);
+  }
+  const double p1 = log2(err[0] / err[1]), p2 = log2(err[1] / err[2]);
+  cr_log_info("discrete mechanical connection: errors %.3g %.3g %.3g, orders %.3f %.3f", err[0],
+              err[1], err[2], p1, p2);
+  cr_expect(fabs(p2 - 3.0) < 0.3, "local order %.3f, expected 3", p2);
+  gm_routh_discrete_free(d);
+  gm_rsprk_free(r);
+  gm_tableau_free(t);
+}
