@@ -16,6 +16,7 @@
 #include "geomint/lie.h"
 #include "geomint/oscillatory.h"
 #include "geomint/celestial.h"
+#include "geomint/reduction.h"
 
 #define GM_VERSION_MAJOR 0
 #define GM_VERSION_MINOR 1
