@@ -6,6 +6,8 @@
 
 #include "geomint/fields.h"
 
+typedef struct mm_event mm_event;
+
 typedef struct mm_current {
   size_t n;
   size_t *edges;  /* owned */
@@ -68,9 +70,9 @@ struct gm_mesh_maxwell {
   double *B0;       /* B at t_0: B_σ(t) = B0_σ + (d₁ A(t))_σ */
   double *face_dt;  /* per-face step */
   size_t *k_f;      /* events done per face */
-  size_t *heap;     /* binary min-heap of faces keyed by their next time */
-  size_t *heap_pos; /* position of each face in the heap (SIZE_MAX: not in it) */
-  double *next_t;   /* next event time of each face: t_0 + (k_f + 1) face_dt */
+  struct mm_event { double t; size_t f; } *heap; /* binary min-heap of (next time, face),
+                                                     keys inline for locality; next time of
+                                                     a face = (k_f + 1) face_dt */
   size_t heap_n;
   double sample_dt, next_sample;
   size_t n_samples;

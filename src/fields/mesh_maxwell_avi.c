@@ -22,37 +22,30 @@
 #include "core/internal.h"
 #include "fields/mesh_maxwell.h"
 
-static int heap_less(const gm_mesh_maxwell *s, size_t a, size_t b) {
-  const double ta = s->next_t[s->heap[a]], tb = s->next_t[s->heap[b]];
-  return ta < tb || (ta == tb && s->heap[a] < s->heap[b]); /* ties: lower face first */
-}
-
-static void heap_swap(gm_mesh_maxwell *s, size_t a, size_t b) {
-  const size_t fa = s->heap[a], fb = s->heap[b];
-  s->heap[a] = fb; s->heap[b] = fa;
-  s->heap_pos[fb] = a; s->heap_pos[fa] = b;
+static int heap_less(const mm_event *a, const mm_event *b) {
+  return a->t < b->t || (a->t == b->t && a->f < b->f); /* ties: lower face first */
 }
 
 static void heap_down(gm_mesh_maxwell *s, size_t i) {
+  mm_event *h = s->heap;
+  const mm_event x = h[i];
   for (;;) {
     const size_t l = 2 * i + 1, r = l + 1;
-    size_t m = i;
-    if (l < s->heap_n && heap_less(s, l, m)) m = l;
-    if (r < s->heap_n && heap_less(s, r, m)) m = r;
-    if (m == i) return;
-    heap_swap(s, i, m);
-    i = m;
+    if (l >= s->heap_n) break;
+    const size_t c = (r < s->heap_n && heap_less(&h[r], &h[l])) ? r : l;
+    if (!heap_less(&h[c], &x)) break;
+    h[i] = h[c];
+    i = c;
   }
+  h[i] = x;
 }
 
 void mm_heap_build(gm_mesh_maxwell *s) {
   s->heap_n = 0;
   for (size_t f = 0; f < s->nf; ++f) {
-    s->heap_pos[f] = SIZE_MAX;
     if (!isfinite(s->face_dt[f])) continue; /* no interior edge: B_σ never changes */
-    s->next_t[f] = s->face_dt[f];
-    s->heap_pos[f] = s->heap_n;
-    s->heap[s->heap_n++] = f;
+    s->heap[s->heap_n].t = s->face_dt[f];
+    s->heap[s->heap_n++].f = f;
   }
   for (size_t i = s->heap_n / 2; i-- > 0;) heap_down(s, i);
 }
@@ -79,7 +72,7 @@ static void avi_event(gm_mesh_maxwell *s, size_t f, double t) {
   ++s->face_updates;
   ++s->step;
   s->t = t;
-  s->next_t[f] = (double)(++s->k_f[f] + 1) * s->face_dt[f];
+  s->heap[0].t = (double)(++s->k_f[f] + 1) * s->face_dt[f]; /* f is the top: re-key, sift */
   heap_down(s, 0);
 }
 
@@ -127,9 +120,9 @@ gm_status mm_avi_advance_to(gm_mesh_maxwell *s, double t) {
     if ((st = mm_observe(s, 0)) != GM_OK) return st;
   }
   const int sampling = s->n_probe || s->n_obs;
-  while (s->heap_n && s->next_t[s->heap[0]] <= t) {
-    const size_t f = s->heap[0];
-    const double te = s->next_t[f];
+  while (s->heap_n && s->heap[0].t <= t) {
+    const size_t f = s->heap[0].f;
+    const double te = s->heap[0].t;
     while (sampling && s->next_sample < te) {
       if ((st = avi_sample(s, s->next_sample)) != GM_OK) return st;
       s->next_sample = (double)(s->n_samples + 1) * s->sample_dt;

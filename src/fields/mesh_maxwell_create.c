@@ -35,7 +35,7 @@ void gm_mesh_maxwell_free(gm_mesh_maxwell *s) {
   free(s->probe);
   free(s->obs);
   free(s->A); free(s->tau_e); free(s->tau_f); free(s->B0); free(s->face_dt); free(s->k_f);
-  free(s->heap); free(s->heap_pos); free(s->next_t);
+  free(s->heap);
   free(s);
 }
 
@@ -313,7 +313,7 @@ gm_status gm_mesh_maxwell_create(const gm_geometry *g, const double *epsilon, co
   /* AVI: per-face steps, the event heap, the A/τ arrays (seed 000 Fig. 3.6, notes A12). */
   MM_ALLOC(s->A, s->ne); MM_ALLOC(s->tau_e, s->ne); MM_ALLOC(s->tau_f, s->nf);
   MM_ALLOC(s->B0, s->nf); MM_ALLOC(s->face_dt, s->nf); MM_ALLOC(s->k_f, s->nf);
-  MM_ALLOC(s->heap, s->nf); MM_ALLOC(s->heap_pos, s->nf); MM_ALLOC(s->next_t, s->nf);
+  MM_ALLOC(s->heap, s->nf);
   double smallest = INFINITY;
   for (size_t f = 0; f < s->nf; ++f) {
     if (!isfinite(s->face_limit[f])) { s->face_dt[f] = INFINITY; continue; } /* no interior edge */
