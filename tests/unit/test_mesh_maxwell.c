@@ -138,3 +138,43 @@ Test(mesh_maxwell, bad_meshes) {
   expect_create(sf.g, NULL, NULL, NULL, GM_EINVAL, "triangles in the plane");
   mm_fixture_free(&sf);
 }
+
+/* Materials per cell: ε = 4 everywhere halves the wave speed, so the CFL limit doubles (the
+ * power iteration sees the same operator scaled); a two-material cavity keeps the modified
+ * energy and Gauss's law. */
+Test(mesh_maxwell, materials_per_cell) {
+  mm_fixture f = mm_rect(8, 0.7, 0.0, 1);
+  gm_error err = {{0}};
+  const size_t nt = gm_complex_count(f.cx, 2), ne = gm_complex_count(f.cx, 1);
+  double *eps = malloc(nt * sizeof(double)), *mu = malloc(nt * sizeof(double));
+  for (size_t i = 0; i < nt; ++i) { eps[i] = 4.0; mu[i] = 1.0; }
+  gm_mesh_maxwell *a = NULL, *b = NULL;
+  cr_assert_eq(gm_mesh_maxwell_create(f.g, NULL, NULL, NULL, &a, &err), GM_OK, "%s", err.message);
+  cr_assert_eq(gm_mesh_maxwell_create(f.g, eps, mu, NULL, &b, &err), GM_OK, "%s", err.message);
+  const double ratio = gm_mesh_maxwell_cfl_limit(b) / gm_mesh_maxwell_cfl_limit(a);
+  cr_assert_lt(fabs(ratio - 2.0), 1e-9, "CFL ratio %.12f", ratio);
+  gm_mesh_maxwell_free(a);
+  gm_mesh_maxwell_free(b);
+  const double *c = gm_geometry_centers(f.g, 2);
+  for (size_t i = 0; i < nt; ++i) { eps[i] = c[2 * i] < 0.5 ? 2.5 : 1.0; mu[i] = c[2 * i + 1] < 0.3 ? 1.5 : 1.0; }
+  cr_assert_eq(gm_mesh_maxwell_create(f.g, eps, mu, NULL, &b, &err), GM_OK, "%s", err.message);
+  double *E = malloc(ne * sizeof(double)), *B = malloc(nt * sizeof(double));
+  mm_random_fields(&f, 9, E, B);
+  gm_mesh_maxwell_set_fields(b, E, B);
+  gm_mesh_maxwell_energy e0, e1;
+  gm_mesh_maxwell_energy_get(b, &e0);
+  const double g0 = gm_mesh_maxwell_gauss(b, NULL);
+  double *gv0 = malloc(gm_complex_count(f.cx, 0) * sizeof(double));
+  double *gv1 = malloc(gm_complex_count(f.cx, 0) * sizeof(double));
+  gm_mesh_maxwell_gauss(b, gv0);
+  cr_assert_eq(gm_mesh_maxwell_advance(b, 2000), GM_OK);
+  gm_mesh_maxwell_energy_get(b, &e1);
+  gm_mesh_maxwell_gauss(b, gv1);
+  double gd = 0.0;
+  for (size_t v = 0; v < gm_complex_count(f.cx, 0); ++v) gd = fmax(gd, fabs(gv1[v] - gv0[v]));
+  cr_assert_lt(fabs(e1.leapfrog - e0.leapfrog), 1e-13 * e0.leapfrog);
+  cr_assert_lt(gd, 1e-12 * fmax(g0, 1.0));
+  free(eps); free(mu); free(E); free(B); free(gv0); free(gv1);
+  gm_mesh_maxwell_free(b);
+  mm_fixture_free(&f);
+}
