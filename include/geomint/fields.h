@@ -21,6 +21,7 @@
 #include <stddef.h>
 
 #include "geomint/core.h"
+#include "geomint/dec.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -399,6 +400,137 @@ double gm_yee_charge(const gm_yee *solver);
  * of the leapfrog energy on either side (the discrete Poynting theorem) away from sources and
  * CPML. Complex fields: the sum of the real parts' and the imaginary parts' fluxes. */
 gm_status gm_yee_poynting_flux(const gm_yee *solver, int axis, size_t index, double *flux);
+
+/* ---- Maxwell on simplicial meshes: DEC leapfrog and AVI (seed 000 §3.4.2–3.4.3) ----------- */
+
+/* The same plan/execute shape as gm_yee: gm_mesh_maxwell_create precomputes the diagonal Hodge
+ * stars per cell, the PEC mask, the CFL limit and (AVI) the per-face steps and the event heap;
+ * sources, probes and observers are added after create; advancing never allocates.
+ *
+ * Fields as cochains on a complex of dimension n = 2 (triangles in the plane: TE, B = Bz on the
+ * triangles) or 3 (tetrahedra): E on primal edges (the value ∫_e E·dl), D = ⋆_ε E on the dual
+ * (n−1)-cells, B on primal 2-faces (the flux ∫_σ B·dA), H = ⋆_ν B on the dual edges, with
+ * ⋆_ε[e] = Σ_{T ≻ e} ε_T |⋆e ∩ T| / |e| and ⋆_ν[σ] = Σ_{T ≻ σ} |⋆σ ∩ T| / (μ_T |σ|) from the
+ * circumcentric dual (the Bossavit–Kettunen diagonal stars). Units ε0 = μ0 = c = 1. PEC on the
+ * whole boundary: E = 0 on boundary edges (their D and ⋆_ε are not used).
+ * Leapfrog state after n steps (as gm_yee): B at t_n = t_0 + nΔt and E at t_n − Δt/2. */
+
+typedef enum gm_mesh_maxwell_scheme {
+  GM_MESH_LEAPFROG = 0, /* Bossavit–Kettunen (seed 000 §3.4.2, notes A11) */
+  GM_MESH_AVI = 1       /* asynchronous variational integrator (§3.4.3, Fig. 3.6, notes A12) */
+} gm_mesh_maxwell_scheme;
+
+typedef enum gm_mesh_maxwell_star {
+  GM_MESH_STAR_DIAGONAL = 0, /* circumcentric dual (Bossavit–Kettunen): diagonal, needs a
+                                well-centred mesh */
+  GM_MESH_STAR_WHITNEY = 1   /* Whitney (Galerkin) mass matrices (Bossavit 1988): ⋆_ε = ε M_1
+                                solved by CHOLMOD (factorized once at create), ⋆_ν = M_2 / μ;
+                                any mesh; uniform ε and μ only; leapfrog only */
+} gm_mesh_maxwell_star;
+
+typedef struct gm_mesh_maxwell_options {
+  gm_mesh_maxwell_scheme scheme; /* default GM_MESH_LEAPFROG */
+  gm_mesh_maxwell_star star;     /* default GM_MESH_STAR_DIAGONAL */
+  double dt;            /* leapfrog step; <= 0: courant × the CFL limit. Above the limit: error */
+  double courant;       /* default 0.9 */
+  double avi_fraction;  /* AVI: each face's step is this fraction of its local limit
+                           (default 0.1, as seed 000 E4) */
+  const double *face_dt;/* AVI: per-face steps (count(2) values, copied; NULL: avi_fraction);
+                           each must be <= the face's local limit */
+  int allow_negative_stars; /* non-zero: accept a mesh that is not well-centred (⋆_ε or ⋆_ν
+                               entries <= 0 on the interior); default 0: refuse */
+} gm_mesh_maxwell_options;
+
+gm_mesh_maxwell_options gm_mesh_maxwell_defaults(void);
+
+typedef struct gm_mesh_maxwell gm_mesh_maxwell;
+
+/* A solver on geometry g (borrowed: it and its complex must outlive the solver; dimension 2 with
+ * N = 2 or dimension 3 with N = 3), with ε and μ per top simplex (copied; NULL: vacuum).
+ * Fields start at zero, t_0 = 0. Errors (GM_EINVAL, message in err): another dimension, ε or
+ * μ <= 0 or non-finite (the cell is named), non-positive star entries on a mesh that is not
+ * well-centred (the message gives their count) unless allow_negative_stars, dt above the CFL
+ * limit (the message gives the limit), a face step above its local limit; GM_ENOMEM. */
+gm_status gm_mesh_maxwell_create(const gm_geometry *g, const double *epsilon, const double *mu,
+                                 const gm_mesh_maxwell_options *options, gm_mesh_maxwell **out,
+                                 gm_error *err);
+void gm_mesh_maxwell_free(gm_mesh_maxwell *s);
+const char *gm_mesh_maxwell_errmsg(const gm_mesh_maxwell *s);
+
+/* The leapfrog CFL limit 2/sqrt(λ_max(⋆_ε⁻¹ d₁ᵀ ⋆_ν d₁)) (interior edges), λ_max by power
+ * iteration (Rayleigh quotient: a lower bound of λ_max, converged to 1e-6 relative), and the
+ * per-face limits 2/sqrt(r_σ) with r_σ the Gershgorin row sum of the face's row of the
+ * symmetrised operator ⋆_ν^½ d₁ ⋆_ε⁻¹ d₁ᵀ ⋆_ν^½ (a rigorous bound: min_σ of these is <= the
+ * true limit). */
+double gm_mesh_maxwell_cfl_limit(const gm_mesh_maxwell *s);
+const double *gm_mesh_maxwell_face_limits(const gm_mesh_maxwell *s);
+double gm_mesh_maxwell_dt(const gm_mesh_maxwell *s);
+/* Leapfrog: step count and t_n; AVI: events processed and the time reached. */
+size_t gm_mesh_maxwell_step(const gm_mesh_maxwell *s);
+double gm_mesh_maxwell_time(const gm_mesh_maxwell *s);
+
+/* Initial fields: E on edges (count(1) values: E at t_0 − Δt/2 for the leapfrog, E on the first
+ * interval after t_0 for the AVI), B on faces (count(2); NULL leaves it). Copied; E on boundary
+ * edges is set to 0. GM_EDOMAIN for non-finite values. Only before the first advance. */
+gm_status gm_mesh_maxwell_set_fields(gm_mesh_maxwell *s, const double *E, const double *B);
+/* Borrowed arrays: E (count(1)), D = ⋆_ε E, B (count(2): for the AVI each face at its own last
+ * update time; gm_mesh_maxwell_sync_b gives B at the current time). */
+const double *gm_mesh_maxwell_e(const gm_mesh_maxwell *s);
+const double *gm_mesh_maxwell_b(const gm_mesh_maxwell *s);
+/* B at the current time (AVI: B_σ = B_σ(t_0) − d₁ ∫ E dt with every edge brought to t). */
+void gm_mesh_maxwell_sync_b(const gm_mesh_maxwell *s, double *B);
+
+/* A current J_e = weights[i] · waveform(t_n) on edges[i] (interior edges, copied), leapfrog only:
+ * D^{n+½} = D^{n−½} + Δt(d₁ᵀH^n − J^n); the charge it moves is booked,
+ * ρ^{n+½} = ρ^{n−½} − Δt div J^n (div = −d₀ᵀ: outflow), so div D − ρ stays constant. */
+gm_status gm_mesh_maxwell_add_current(gm_mesh_maxwell *s, size_t n_edges, const size_t *edges,
+                                      const double *weights, const gm_waveform *wave,
+                                      size_t *id);
+/* Probe: component c (GM_EX..GM_EZ: the Whitney interpolant of E; GM_HX..GM_HZ: of B over μ;
+ * 2-D has Ex, Ey, Hz) at point x, recorded after every step (leapfrog) or, for the AVI, every
+ * sample_dt of time from the synchronised fields. Room for capacity samples. GM_EINVAL: x in
+ * no cell, a component the dimension lacks. */
+gm_status gm_mesh_maxwell_add_probe(gm_mesh_maxwell *s, gm_yee_component c, const double x[3],
+                                    size_t capacity, size_t *id);
+gm_status gm_mesh_maxwell_probe_samples(const gm_mesh_maxwell *s, size_t id, size_t *n,
+                                        const double **t, const double **values);
+/* AVI only: the probes' sampling interval (default: the smallest face step). */
+gm_status gm_mesh_maxwell_set_sample_dt(gm_mesh_maxwell *s, double sample_dt);
+
+typedef int (*gm_mesh_maxwell_observer_fn)(void *ctx, const gm_mesh_maxwell *s);
+/* Leapfrog: fn at every step that is a multiple of every (step 0 included). AVI: every `every`
+ * probe samples. Non-zero return stops with GM_ECALLBACK. */
+gm_status gm_mesh_maxwell_add_observer(gm_mesh_maxwell *s, size_t every,
+                                       gm_mesh_maxwell_observer_fn fn, void *ctx);
+
+/* Leapfrog: n steps (seed 000 §3.4.2, notes A11):
+ *   D^{n+½} = D^{n−½} + Δt (d₁ᵀ ⋆_ν B^n − J^n),  E^{n+½} = ⋆_ε⁻¹ D^{n+½}   (Ampère, dG = 𝒥)
+ *   B^{n+1} = B^n − Δt d₁ E^{n+½}                                        (Faraday, dF = 0)
+ * AVI: GM_EINVAL (use advance_to). */
+gm_status gm_mesh_maxwell_advance(gm_mesh_maxwell *s, size_t n_steps);
+/* Leapfrog: to the last step with t_n <= t. AVI: process every face event with time <= t. */
+gm_status gm_mesh_maxwell_advance_to(gm_mesh_maxwell *s, double t);
+
+/* Counts of face updates (B) and edge updates (D) done so far. */
+void gm_mesh_maxwell_update_counts(const gm_mesh_maxwell *s, size_t *faces, size_t *edges);
+
+typedef struct gm_mesh_maxwell_energy {
+  double electric; /* ½ Eᵀ ⋆_ε E */
+  double magnetic; /* ½ Bᵀ ⋆_ν B (AVI: synchronised B) */
+  double plain;    /* electric + magnetic */
+  double leapfrog; /* ½ [Eᵀ⋆_ε E + B^{n−1}ᵀ ⋆_ν B^n], B^{n−1} = B^n + Δt d₁E^{n−½}: conserved
+                      exactly by the leapfrog without sources (AVI: = plain) */
+} gm_mesh_maxwell_energy;
+void gm_mesh_maxwell_energy_get(const gm_mesh_maxwell *s, gm_mesh_maxwell_energy *energy);
+/* max over top simplices of |d_{n−1} B| (3-D: div B per tetrahedron, the flux out of it; 2-D:
+ * 0 by construction, B being a top form); AVI: of the synchronised B. */
+double gm_mesh_maxwell_div_b(const gm_mesh_maxwell *s);
+/* Gauss residual div D − ρ = −d₀ᵀD − ρ per vertex (out: count(0) values, may be NULL);
+ * boundary vertices are reported as 0 (PEC walls carry surface charge the scheme does not
+ * track). Returns the max |.| over vertices. */
+double gm_mesh_maxwell_gauss(const gm_mesh_maxwell *s, double *out);
+/* Σ ρ over the vertices (charge moved by the currents: 0 up to round-off). */
+double gm_mesh_maxwell_charge(const gm_mesh_maxwell *s);
 
 /* ---- harminv: resonances of a signal (Mandelshtam & Taylor filter diagonalization) --------- */
 
