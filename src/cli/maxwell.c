@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "cli/maxwell.h"
+#include "cli/maxwell_mesh.h"
 
 int mx_run_main(int argc, char **argv);    /* maxwell_run.c */
 int mx_cavity_main(int argc, char **argv); /* maxwell_cavity.c */
@@ -12,7 +13,8 @@ static const char usage[] =
     "usage: geomint maxwell run SCENE.json [--out DIR] [--json] [--check] [--threads K]\n"
     "                           [--plot FILE.png [--plot-field C]]\n"
     "       geomint maxwell cavity [--dim 2|3] [--n N] [--periods P] [--out DIR] [--json]\n"
-    "       geomint maxwell e4 [--n N] [--time T] [--seed S] [--out DIR] [--json]\n\n"
+    "       geomint maxwell e4 [--n N] [--time T] [--seed S] [--out DIR] [--json]\n"
+    "       geomint maxwell mesh FILE.msh | --rect NX [--avi] ... (see 'maxwell mesh --help')\n\n"
     "Maxwell's equations on a Cartesian grid with the Yee scheme (E on primal edges at half\n"
     "steps, H on primal faces at whole steps; seed 000 section 3.4.1). See docs/maxwell.md.\n\n"
     "  run     run the scene file: grid, materials, boundaries (pec, pmc, periodic, cpml),\n"
@@ -25,7 +27,9 @@ static const char usage[] =
     "          ones and Yee's discrete dispersion relation; writes cavity-spectrum.png\n"
     "  e4      seed 000 experiment E4 on the uniform grid: random initial E in a PEC unit\n"
     "          square (2-D TE, N x N cells), steps of 1/10 of the Courant limit for T = 8;\n"
-    "          prints the energy's bounded oscillation and writes e4-energy.png\n\n"
+    "          prints the energy's bounded oscillation and writes e4-energy.png\n"
+    "  mesh    PEC cavity on a triangle or tetrahedron mesh: DEC leapfrog or the AVI\n"
+    "          (docs/maxwell-mesh.md)\n\n"
     "options:\n"
     "  --out DIR     output directory (created if missing)\n"
     "  --json        print one JSON object instead of the text summary\n"
@@ -54,7 +58,8 @@ static int maxwell_main(int argc, char **argv) {
   if (strcmp(argv[0], "run") == 0) return mx_run_main(argc - 1, argv + 1);
   if (strcmp(argv[0], "cavity") == 0) return mx_cavity_main(argc - 1, argv + 1);
   if (strcmp(argv[0], "e4") == 0) return mx_e4_main(argc - 1, argv + 1);
-  cli_error("maxwell", "unknown subcommand '%s' (run, cavity, e4); see 'geomint maxwell --help'",
+  if (strcmp(argv[0], "mesh") == 0) return cli_maxwell_mesh(argc - 1, argv + 1);
+  cli_error("maxwell", "unknown subcommand '%s' (run, cavity, e4, mesh); see 'geomint maxwell --help'",
             argv[0]);
   return CLI_EXIT_USAGE;
 }

@@ -429,3 +429,31 @@ Test(cli_maxwell, progress_only_on_a_terminal) {
   cr_expect(strstr(tty, "wrote out2/: probes.csv") != NULL, "%s", tty);
   free(tty);
 }
+
+/* `maxwell mesh`: the DEC leapfrog on a generated triangle mesh keeps its modified energy and
+ * Gauss's law to round-off; the AVI on a warped mesh keeps Gauss's law; bad input exits 2. */
+static double number_after(const char *text, const char *key) {
+  const char *at = strstr(text, key);
+  cr_assert_not_null(at, "no '%s' in: %s", key, text);
+  return strtod(at + strlen(key), NULL);
+}
+
+Test(cli_maxwell, mesh_leapfrog_and_avi) {
+  run_output r = run_cli("maxwell mesh --rect 10 --t-end 1 --samples 10");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  const double start = number_after(r.out, "energy: start "),
+               leapfrog = number_after(r.out, "leapfrog ");
+  cr_expect(fabs(leapfrog - start) <= 1e-12 * start, "%s", r.out);
+  cr_expect_leq(number_after(r.out, "max Gauss drift "), 1e-12, "%s", r.out);
+  run_output_free(&r);
+  r = run_cli("maxwell mesh --rect 8 --warp 0.3 --avi --t-end 1 --samples 10");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_expect_leq(number_after(r.out, "max Gauss drift "), 1e-12, "%s", r.out);
+  run_output_free(&r);
+  r = run_cli("maxwell mesh /nonexistent.msh");
+  cr_expect_eq(r.status, 2);
+  run_output_free(&r);
+  r = run_cli("maxwell mesh --rect 10 --dt 1");
+  cr_expect_eq(r.status, 2, "%s", r.err);
+  run_output_free(&r);
+}
