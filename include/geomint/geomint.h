@@ -13,6 +13,7 @@
 #include "geomint/mimetic.h"
 #include "geomint/variational.h"
 #include "geomint/fields.h"
+#include "geomint/pde.h"
 
 #define GM_VERSION_MAJOR 0
 #define GM_VERSION_MINOR 1
