@@ -22,6 +22,7 @@ typedef struct cli_command {
 
 extern const cli_command cli_list_command, cli_run_command, cli_order_command,
     cli_demo_command, cli_wp_command, cli_mesh_command, cli_mimetic_command;
+extern const cli_command cli_pde_command;
 
 /* "geomint COMMAND: message" on stderr, one line. */
 #if defined(__GNUC__)

@@ -9,7 +9,8 @@
 static const cli_command *const commands[] = {&cli_list_command, &cli_run_command,
                                               &cli_order_command, &cli_demo_command,
                                               &cli_wp_command, &cli_mesh_command,
-                                              &cli_mimetic_command};
+                                              &cli_mimetic_command,
+                                              &cli_pde_command};
 #define N_COMMANDS (sizeof commands / sizeof commands[0])
 
 void cli_error(const char *command, const char *fmt, ...) {
