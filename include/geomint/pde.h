@@ -42,6 +42,9 @@ typedef struct gm_pde_equation {
                                                    symmetrised; counted in the statistics */
   /* Wave equations only (s = (u, v = u_t, w = u_x)), for the scalar schemes LF/EC/MS: */
   gm_pde_potential_fn V, dV;                    /* NULL for other equations */
+  /* Equations with a U(1) charge ∫|ψ|², ψ = s[norm_a] + i s[norm_b] (NLS): has_norm = 1. */
+  int has_norm;
+  size_t norm_a, norm_b;
   const void *params;                           /* borrowed, passed as ctx */
 } gm_pde_equation;
 
@@ -49,6 +52,12 @@ typedef struct gm_pde_equation {
  * notes) as s = (u, v, w): 𝕎_uv = −1, 𝕂_uw = +1, S = ½(v² − w²) − cos u, which reads
  * −v_t + w_x = sin u, u_t = v, u_x = w. */
 gm_pde_equation gm_pde_sine_gordon(void);
+
+/* Cubic focusing NLS iψ_t + ψ_xx + 2|ψ|²ψ = 0 (Islas, Karpeev & Schober, J. Comput. Phys.
+ * 173 (2001) §2) as s = (p, q, v, w), ψ = p + iq, v = p_x, w = q_x: 𝕎_pq = 1, 𝕂_pv = 𝕂_qw = −1,
+ * S = ½(p² + q²)² + ½(v² + w²), which reads q_t − v_x = 2|ψ|²p, −p_t − w_x = 2|ψ|²q,
+ * p_x = v, q_x = w. Its multisymplectic box scheme is the Preissmann row. */
+gm_pde_equation gm_pde_nls(void);
 
 /* Check an equation: dim in range, 𝕎 and 𝕂 skew (exactly), S and gradient set, V and dV
  * both set or both NULL. GM_EINVAL with a message. */
@@ -84,7 +93,7 @@ gm_status gm_pde_scheme_find(const char *name, const gm_pde_scheme **out);
 /* ---- the solver ----------------------------------------------------------------------------- */
 
 typedef struct gm_pde_grid {
-  size_t n;   /* grid points on the period (>= 4; odd for the Preissmann box, see below) */
+  size_t n;   /* grid points on the period (>= 4; odd for Preissmann when 𝕂 is singular) */
   double h;   /* Δx > 0 */
   double x0;  /* x of point 0 */
 } gm_pde_grid;
@@ -106,8 +115,9 @@ typedef struct gm_pde gm_pde;
  * The scalar schemes read u = s[0] and u_t = s[1] and start with the Taylor step
  * u¹ = u⁰ + Δt u_t + ½Δt²(δ_x²u⁰ − V'(u⁰)).
  * Errors (GM_EINVAL, message in err): NULL arguments, a bad equation, n < 4, even n for the
- * Preissmann box (its Newton matrix is singular on a periodic grid of even n: the checkerboard
- * (−1)^i c with 𝕂c = 0 is annihilated by the two-point averages, see docs/pde.md), h or Δt not
+ * Preissmann box when 𝕂 is singular (the Newton matrix is then singular on a periodic grid of
+ * even n: the checkerboard (−1)^i c with 𝕂c = 0 is annihilated by the two-point averages; see
+ * docs/pde.md), h or Δt not
  * finite and > 0, a scalar scheme with an equation without V, an LF step with Δt > Δx (the
  * CFL bound of its explicit wave part), non-finite initial data (GM_EDOMAIN). */
 gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
@@ -144,6 +154,11 @@ double gm_pde_momentum(const gm_pde *pde);
 /* Multisymplectic residual of the last step (track_variations on, box schemes, at least two
  * steps taken for the Euler box): per cell, |R| / (sum of the |terms| of R), written to rel
  * (n values) when rel is non-NULL; returns the maximum, or −1 when not available. */
+/* The charge of an equation with has_norm: box schemes h Σ_i |½(ψ_i + ψ_{i+1})|² (the
+ * space-averaged ψ the Preissmann box conserves exactly), otherwise h Σ_i |ψ_i|². NAN when the
+ * equation has no norm. */
+double gm_pde_norm(const gm_pde *pde);
+
 double gm_pde_ms_residual(const gm_pde *pde, double *rel);
 
 typedef struct gm_pde_stats {

@@ -49,6 +49,51 @@ gm_pde_equation gm_pde_sine_gordon(void) {
   return e;
 }
 
+/* ---- NLS: Islas, Karpeev & Schober (2001) eq. (2.3) -------------------------------------- */
+static double nls_S(const double *s, const void *ctx) {
+  (void)ctx;
+  double r = s[0] * s[0] + s[1] * s[1];
+  return 0.5 * r * r + 0.5 * (s[2] * s[2] + s[3] * s[3]);
+}
+static void nls_grad(const double *s, double *g, const void *ctx) {
+  (void)ctx;
+  double r = s[0] * s[0] + s[1] * s[1];
+  g[0] = 2.0 * r * s[0];
+  g[1] = 2.0 * r * s[1];
+  g[2] = s[2];
+  g[3] = s[3];
+}
+static void nls_hess(const double *s, double *H, const void *ctx) {
+  (void)ctx;
+  double p = s[0], q = s[1], r = p * p + q * q;
+  for (int k = 0; k < 16; k++) H[k] = 0.0;
+  H[0] = 2.0 * r + 4.0 * p * p;
+  H[1] = H[4] = 4.0 * p * q;
+  H[5] = 2.0 * r + 4.0 * q * q;
+  H[10] = 1.0;
+  H[15] = 1.0;
+}
+
+gm_pde_equation gm_pde_nls(void) {
+  gm_pde_equation e = {0};
+  e.name = "nls";
+  e.dim = 4;
+  /* rows (p, q, v, w): q_t − v_x = 2|ψ|²p; −p_t − w_x = 2|ψ|²q; p_x = v; q_x = w */
+  e.W[0 * 4 + 1] = 1.0;
+  e.W[1 * 4 + 0] = -1.0;
+  e.K[0 * 4 + 2] = -1.0;
+  e.K[2 * 4 + 0] = 1.0;
+  e.K[1 * 4 + 3] = -1.0;
+  e.K[3 * 4 + 1] = 1.0;
+  e.S = nls_S;
+  e.gradient = nls_grad;
+  e.hessian = nls_hess;
+  e.has_norm = 1;
+  e.norm_a = 0;
+  e.norm_b = 1;
+  return e;
+}
+
 gm_status gm_pde_equation_check(const gm_pde_equation *eq, gm_error *err) {
   if (eq == NULL) return gm_error_set(err, GM_EINVAL, "pde: NULL equation");
   size_t d = eq->dim;
@@ -59,6 +104,8 @@ gm_status gm_pde_equation_check(const gm_pde_equation *eq, gm_error *err) {
     return gm_error_set(err, GM_EINVAL, "pde: equation needs S and its gradient");
   if ((eq->V == NULL) != (eq->dV == NULL))
     return gm_error_set(err, GM_EINVAL, "pde: set both V and dV, or neither");
+  if (eq->has_norm && (eq->norm_a >= d || eq->norm_b >= d || eq->norm_a == eq->norm_b))
+    return gm_error_set(err, GM_EINVAL, "pde: norm components out of range");
   for (size_t i = 0; i < d; i++)
     for (size_t j = 0; j < d; j++) {
       double w = eq->W[i * d + j], wt = eq->W[j * d + i];

@@ -62,11 +62,15 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
     return gm_error_set(err, GM_EINVAL, "pde: time step dt must be finite and > 0 (got %g)", dt);
   if (!(options->newton_tol > 0.0) || options->newton_max_iter == 0)
     return gm_error_set(err, GM_EINVAL, "pde: Newton tolerance and iteration limit must be > 0");
-  if (scheme->kind == GM_PDE_PREISSMANN && n % 2 == 0)
+  double kcopy[GM_PDE_MAX_DIM * GM_PDE_MAX_DIM];
+  int kpiv[GM_PDE_MAX_DIM];
+  memcpy(kcopy, eq->K, d * d * sizeof *kcopy);
+  int k_singular = gm_lu_factor(d, kcopy, kpiv) != GM_OK;
+  if (scheme->kind == GM_PDE_PREISSMANN && n % 2 == 0 && k_singular)
     return gm_error_set(err, GM_EINVAL,
                         "pde: the Preissmann box needs an odd number of grid points on a "
-                        "periodic grid (got n = %zu: the checkerboard mode makes its Newton "
-                        "matrix singular)", n);
+                        "periodic grid when K is singular (got n = %zu: the checkerboard mode "
+                        "makes its Newton matrix singular)", n);
   if (scheme->scalar && (eq->V == NULL || d != 3))
     return gm_error_set(err, GM_EINVAL,
                         "pde: scheme '%s' needs a wave equation (s = (u, v, w) with V, dV)",
@@ -201,6 +205,22 @@ double gm_pde_energy(const gm_pde *p) {
 double gm_pde_momentum(const gm_pde *p) {
   if (p->scheme->scalar) return gm_pde_wave_momentum(p);
   return p->grid.h * 0.5 * quad_sum(p, p->eq.W);
+}
+
+double gm_pde_norm(const gm_pde *p) {
+  if (!p->eq.has_norm) return NAN;
+  size_t n = p->n, d = p->d, a = p->eq.norm_a, b = p->eq.norm_b;
+  double sum = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    const double *si = p->s + i * d, *sj = p->s + ((i + 1) % n) * d;
+    if (p->scheme->scalar) {
+      sum += si[a] * si[a] + si[b] * si[b];
+    } else {
+      double re = 0.5 * (si[a] + sj[a]), im = 0.5 * (si[b] + sj[b]);
+      sum += re * re + im * im;
+    }
+  }
+  return p->grid.h * sum;
 }
 
 double gm_pde_ms_residual(const gm_pde *p, double *rel) {
