@@ -161,6 +161,17 @@ double gm_pde_norm(const gm_pde *pde);
 
 double gm_pde_ms_residual(const gm_pde *pde, double *rel);
 
+/* Local energy (35) and momentum (36) residuals of the last step per cell i+½, box schemes
+ * (after at least one step): with s̄ the space average over the cell, s^{n+½} the time
+ * average at a node,
+ *   R_E = (E^{n+1}_{i+½} − Eⁿ_{i+½})/Δt + (F_{i+1} − F_i)/Δx,  E = S(s̄) + ½(δ_x⁺s)ᵀ𝕂s̄,
+ *         F = −½(δ_t⁺s)ᵀ𝕂s^{n+½};
+ *   R_I likewise with I = ½(δ_x⁺s)ᵀ𝕎s̄, G = −½(δ_t⁺s)ᵀ𝕎s^{n+½} − S(s^{n+½}).
+ * Neither law is exact for the box schemes (only the multisymplectic one is): these monitor
+ * the local defect, O(Δt² + Δx²) for Preissmann. energy, momentum: n values each (either may
+ * be NULL). Returns GM_EUNSUPPORTED for scalar schemes or before the first step. */
+gm_status gm_pde_local_residuals(const gm_pde *pde, double *energy, double *momentum);
+
 typedef struct gm_pde_stats {
   size_t steps, newton_iterations, factorizations, hessian_fd_evaluations, gradient_evaluations;
   double max_newton_residual; /* largest final max|Δs| over the steps */
