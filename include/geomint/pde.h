@@ -100,7 +100,9 @@ typedef struct gm_pde_grid {
 
 typedef struct gm_pde_options {
   double dt;               /* Δt > 0 */
-  double newton_tol;       /* stop when max|Δs| <= tol·(1 + max|s|) (default 1e-13) */
+  double newton_tol;       /* stop when max|Δs| <= tol·(1 + max|s|) (default 1e-13), or at
+                              the round-off floor: max|Δs| <= 1e-9·(1 + max|s|) and no longer
+                              halving */
   size_t newton_max_iter;  /* default 30 */
   int track_variations;    /* box schemes: carry two tangent variations U, V of the scheme
                               and record the multisymplectic residual per cell each step */

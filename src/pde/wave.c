@@ -96,6 +96,7 @@ static gm_status ms_step(gm_pde *p, gm_error *err) {
       return gm_error_set(err, st, "pde ms: singular Newton matrix at step %zu", p->steps + 1);
     for (size_t i = 0; i < n; i++) dx[p->pos[i]] = -F[i];
     gm_band_solve(&p->band, dx);
+    double prev = last;
     last = 0.0;
     double xm = 0.0;
     for (size_t i = 0; i < n; i++) {
@@ -107,6 +108,7 @@ static gm_status ms_step(gm_pde *p, gm_error *err) {
     p->stats.newton_iterations++;
     if (!isfinite(last) || !isfinite(xm)) break;
     if (last <= p->opt.newton_tol * (1.0 + xm)) break;
+    if (last <= 1e-9 * (1.0 + xm) && last >= 0.5 * prev) break; /* round-off floor */
   }
   if (!isfinite(last))
     return gm_error_set(err, GM_EDOMAIN, "pde ms: non-finite state at step %zu", p->steps + 1);
