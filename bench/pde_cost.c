@@ -22,7 +22,7 @@ static double measure(const char *scheme, size_t n, size_t steps, gm_pde_stats *
   if (s0 == NULL) return NAN;
   for (size_t i = 0; i < n; i++) s0[3 * i + 1] = 4.0 * k / cosh(k * (-L + (double)i * h));
   gm_pde_equation eq = gm_pde_sine_gordon();
-  gm_pde_grid g = {n, h, -L};
+  gm_pde_grid g = {n, h, -L, {0}};
   gm_pde_options o = gm_pde_options_defaults();
   o.dt = 0.5 * h;
   double best = INFINITY;

@@ -31,7 +31,7 @@ static inline gm_pde *pde_breather_solver(const char *scheme, size_t n, double d
   gm_pde_equation eq = gm_pde_sine_gordon();
   const gm_pde_scheme *s = NULL;
   cr_assert_eq(gm_pde_scheme_find(scheme, &s), GM_OK, "scheme %s", scheme);
-  gm_pde_grid g = {n, 2.0 * PDE_L / (double)n, -PDE_L};
+  gm_pde_grid g = {n, 2.0 * PDE_L / (double)n, -PDE_L, {0}};
   gm_pde_options o = gm_pde_options_defaults();
   o.dt = dt;
   o.track_variations = track;

@@ -96,6 +96,8 @@ typedef struct gm_pde_grid {
   size_t n;   /* grid points on the period (>= 4; odd for Preissmann when 𝕂 is singular) */
   double h;   /* Δx > 0 */
   double x0;  /* x of point 0 */
+  double twist[GM_PDE_MAX_DIM]; /* s_{i+n} = s_i + twist (0: periodic). A sine-Gordon kink
+                                   has twist (2π, 0, 0): u is periodic modulo 2π. */
 } gm_pde_grid;
 
 typedef struct gm_pde_options {

@@ -48,7 +48,7 @@ static int make_solver(const char *cmd, const char *scheme_name, size_t n, doubl
     return CLI_EXIT_USAGE;
   }
   gm_pde_equation eq = gm_pde_sine_gordon();
-  gm_pde_grid g = {n, 2.0 * L_HALF / (double)n, -L_HALF};
+  gm_pde_grid g = {n, 2.0 * L_HALF / (double)n, -L_HALF, {0}};
   gm_pde_options o = gm_pde_options_defaults();
   o.dt = dt;
   double *s0 = breather_data(n, omega);

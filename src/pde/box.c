@@ -56,7 +56,13 @@ static void preissmann_residual(gm_pde *p, const double *x, double *F) {
   double *m = p->work, *g = p->work + d;
   for (size_t i = 0; i < n; i++) {
     size_t j = (i + 1) % n;
-    const double *xi = x + i * d, *xj = x + j * d, *si = p->s + i * d, *sj = p->s + j * d;
+    (void)j;
+    double xj[GM_PDE_MAX_DIM], sj[GM_PDE_MAX_DIM];
+    const double *xi = x + i * d, *si = p->s + i * d;
+    for (size_t a = 0; a < d; a++) {
+      xj[a] = gm_pde_at(p, x, i, 1, a);
+      sj[a] = gm_pde_at(p, p->s, i, 1, a);
+    }
     for (size_t a = 0; a < d; a++) m[a] = 0.25 * (xi[a] + xj[a] + si[a] + sj[a]);
     p->eq.gradient(m, g, p->eq.params);
     p->stats.gradient_evaluations++;
@@ -81,7 +87,8 @@ static gm_status preissmann_jacobian(gm_pde *p, const double *x) {
   for (size_t i = 0; i < n; i++) {
     size_t j = (i + 1) % n;
     for (size_t a = 0; a < d; a++)
-      m[a] = 0.25 * (x[i * d + a] + x[j * d + a] + p->s[i * d + a] + p->s[j * d + a]);
+      m[a] = 0.25 * (x[i * d + a] + gm_pde_at(p, x, i, 1, a) + p->s[i * d + a] +
+                     gm_pde_at(p, p->s, i, 1, a));
     double *H = p->hess + i * d * d;
     gm_pde_hessian(p, m, H, p->work + d);
     add_block(p, i, i, p->eq.W, 0.5 / dt);
@@ -105,7 +112,6 @@ static void euler_residual(gm_pde *p, const double *x, double *F) {
   double dt = p->opt.dt, h = p->grid.h;
   double *gs = p->work, *gx = p->work + d, *t = p->work + 2 * d;
   for (size_t i = 0; i < n; i++) {
-    size_t ip = (i + 1) % n, im = (i + n - 1) % n;
     const double *xi = x + i * d, *si = p->s + i * d, *sp = p->s_prev + i * d;
     double *Fi = F + i * d;
     p->eq.gradient(si, gs, p->eq.params);
@@ -117,16 +123,16 @@ static void euler_residual(gm_pde *p, const double *x, double *F) {
     matvec_add(d, p->Wp, 1.0, t, rp);
     for (size_t a = 0; a < d; a++) t[a] = (si[a] - sp[a]) / dt;
     matvec_add(d, p->Wm, 1.0, t, rp);
-    for (size_t a = 0; a < d; a++) t[a] = (p->s[ip * d + a] - si[a]) / h;
+    for (size_t a = 0; a < d; a++) t[a] = (gm_pde_at(p, p->s, i, 1, a) - si[a]) / h;
     matvec_add(d, p->Kp, 1.0, t, rp);
-    for (size_t a = 0; a < d; a++) t[a] = (si[a] - p->s[im * d + a]) / h;
+    for (size_t a = 0; a < d; a++) t[a] = (si[a] - gm_pde_at(p, p->s, i, -1, a)) / h;
     matvec_add(d, p->Km, 1.0, t, rp);
     /* Z rows at level n + 1 (𝕎₊ rows vanish there) */
     for (size_t a = 0; a < d; a++) t[a] = (xi[a] - si[a]) / dt;
     matvec_add(d, p->Wm, 1.0, t, rz);
-    for (size_t a = 0; a < d; a++) t[a] = (x[ip * d + a] - xi[a]) / h;
+    for (size_t a = 0; a < d; a++) t[a] = (gm_pde_at(p, x, i, 1, a) - xi[a]) / h;
     matvec_add(d, p->Kp, 1.0, t, rz);
-    for (size_t a = 0; a < d; a++) t[a] = (xi[a] - x[im * d + a]) / h;
+    for (size_t a = 0; a < d; a++) t[a] = (xi[a] - gm_pde_at(p, x, i, -1, a)) / h;
     matvec_add(d, p->Km, 1.0, t, rz);
     for (size_t a = 0; a < d; a++) Fi[a] = wp_row(p, a) ? rp[a] - gs[a] : rz[a] - gx[a];
   }

@@ -56,6 +56,23 @@ struct gm_pde {
   gm_pde_stats stats;
 };
 
+/* Component a of point i + shift (shift in {−1, 0, 1}) of a state x on the twisted ring:
+ * x_{i+n} = x_i + twist. */
+static inline double gm_pde_at(const gm_pde *p, const double *x, size_t i, int shift, size_t a) {
+  size_t n = p->n, d = p->d;
+  if (shift > 0 && i == n - 1) return x[a] + p->grid.twist[a];
+  if (shift < 0 && i == 0) return x[(n - 1) * d + a] - p->grid.twist[a];
+  size_t j = shift > 0 ? i + 1 : shift < 0 ? i - 1 : i;
+  return x[j * d + a];
+}
+/* The same for the scalar schemes' u arrays (twist of component 0). */
+static inline double gm_pde_u_at(const gm_pde *p, const double *u, size_t i, int shift) {
+  size_t n = p->n;
+  if (shift > 0 && i == n - 1) return u[0] + p->grid.twist[0];
+  if (shift < 0 && i == 0) return u[n - 1] - p->grid.twist[0];
+  return u[shift > 0 ? i + 1 : shift < 0 ? i - 1 : i];
+}
+
 /* Hessian of S at s (d×d), analytic or by central differences of the gradient (symmetrised;
  * counted). work: 2d doubles. */
 void gm_pde_hessian(gm_pde *p, const double *s, double *H, double *work);

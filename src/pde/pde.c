@@ -79,6 +79,9 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
     return gm_error_set(err, GM_EINVAL,
                         "pde: LF step violates the CFL bound dt <= dx (dt = %g, dx = %g)", dt,
                         grid->h);
+  for (size_t a = 0; a < d; a++)
+    if (!isfinite(grid->twist[a]))
+      return gm_error_set(err, GM_EINVAL, "pde: grid twist must be finite");
   for (size_t k = 0; k < n * d; k++)
     if (!isfinite(s0[k]))
       return gm_error_set(err, GM_EDOMAIN, "pde: initial data not finite at point %zu "
@@ -187,10 +190,10 @@ static double quad_sum(const gm_pde *p, const double *M) {
   size_t n = p->n, d = p->d;
   double sum = 0.0;
   for (size_t i = 0; i < n; i++) {
-    const double *si = p->s + i * d, *sj = p->s + ((i + 1) % n) * d;
+    const double *si = p->s + i * d;
     for (size_t a = 0; a < d; a++)
       for (size_t b = 0; b < d; b++)
-        sum += (sj[a] - si[a]) / p->grid.h * M[a * d + b] * si[b];
+        sum += (gm_pde_at(p, p->s, i, 1, a) - si[a]) / p->grid.h * M[a * d + b] * si[b];
   }
   return sum;
 }
@@ -235,22 +238,23 @@ double gm_pde_ms_residual(const gm_pde *p, double *rel) {
 
 /* (δ_x⁺ s)ᵀ M s̄ over cell i+½ of level x, and (δ_t⁺ s_i)ᵀ M s^{n+½}_i at node i */
 static double cell_quad(const gm_pde *p, const double *x, size_t i, const double *M) {
-  size_t d = p->d, j = (i + 1) % p->n;
-  double r = 0.0;
-  for (size_t a = 0; a < d; a++)
-    for (size_t b = 0; b < d; b++)
-      r += (x[j * d + a] - x[i * d + a]) / p->grid.h * M[a * d + b] * 0.5 *
-           (x[i * d + b] + x[j * d + b]);
-  return r;
-}
-static double node_quad(const gm_pde *p, const double *x0, const double *x1, size_t i,
-                        const double *M) {
   size_t d = p->d;
   double r = 0.0;
   for (size_t a = 0; a < d; a++)
     for (size_t b = 0; b < d; b++)
-      r += (x1[i * d + a] - x0[i * d + a]) / p->opt.dt * M[a * d + b] * 0.5 *
-           (x0[i * d + b] + x1[i * d + b]);
+      r += (gm_pde_at(p, x, i, 1, a) - x[i * d + a]) / p->grid.h * M[a * d + b] * 0.5 *
+           (x[i * d + b] + gm_pde_at(p, x, i, 1, b));
+  return r;
+}
+/* at node i + shift (shift 0 or 1), on the twisted ring */
+static double node_quad(const gm_pde *p, const double *x0, const double *x1, size_t i,
+                        int shift, const double *M) {
+  size_t d = p->d;
+  double r = 0.0;
+  for (size_t a = 0; a < d; a++)
+    for (size_t b = 0; b < d; b++)
+      r += (gm_pde_at(p, x1, i, shift, a) - gm_pde_at(p, x0, i, shift, a)) / p->opt.dt *
+           M[a * d + b] * 0.5 * (gm_pde_at(p, x0, i, shift, b) + gm_pde_at(p, x1, i, shift, b));
   return r;
 }
 
@@ -261,30 +265,29 @@ gm_status gm_pde_local_residuals(const gm_pde *p, double *energy, double *moment
   double bar[GM_PDE_MAX_DIM];
   const void *c = p->eq.params;
   for (size_t i = 0; i < n; i++) {
-    size_t j = (i + 1) % n;
     double Sbar[2], Smid[2];
     const double *lv[2] = {x0, x1};
     for (int l = 0; l < 2; l++) {
-      for (size_t a = 0; a < d; a++) bar[a] = 0.5 * (lv[l][i * d + a] + lv[l][j * d + a]);
+      for (size_t a = 0; a < d; a++)
+        bar[a] = 0.5 * (lv[l][i * d + a] + gm_pde_at(p, lv[l], i, 1, a));
       Sbar[l] = p->eq.S(bar, c);
     }
-    size_t nodes[2] = {i, j};
     for (int l = 0; l < 2; l++) {
       for (size_t a = 0; a < d; a++)
-        bar[a] = 0.5 * (x0[nodes[l] * d + a] + x1[nodes[l] * d + a]);
+        bar[a] = 0.5 * (gm_pde_at(p, x0, i, l, a) + gm_pde_at(p, x1, i, l, a));
       Smid[l] = p->eq.S(bar, c);
     }
     if (energy != NULL) {
       double e1 = Sbar[1] + 0.5 * cell_quad(p, x1, i, p->eq.K);
       double e0 = Sbar[0] + 0.5 * cell_quad(p, x0, i, p->eq.K);
-      double fj = -0.5 * node_quad(p, x0, x1, j, p->eq.K);
-      double fi = -0.5 * node_quad(p, x0, x1, i, p->eq.K);
+      double fj = -0.5 * node_quad(p, x0, x1, i, 1, p->eq.K);
+      double fi = -0.5 * node_quad(p, x0, x1, i, 0, p->eq.K);
       energy[i] = (e1 - e0) / p->opt.dt + (fj - fi) / p->grid.h;
     }
     if (momentum != NULL) {
       double m1 = 0.5 * cell_quad(p, x1, i, p->eq.W), m0 = 0.5 * cell_quad(p, x0, i, p->eq.W);
-      double gj = -0.5 * node_quad(p, x0, x1, j, p->eq.W) - Smid[1];
-      double gi = -0.5 * node_quad(p, x0, x1, i, p->eq.W) - Smid[0];
+      double gj = -0.5 * node_quad(p, x0, x1, i, 1, p->eq.W) - Smid[1];
+      double gi = -0.5 * node_quad(p, x0, x1, i, 0, p->eq.W) - Smid[0];
       momentum[i] = (m1 - m0) / p->opt.dt + (gj - gi) / p->grid.h;
     }
   }

@@ -16,8 +16,8 @@ static double d2V(gm_pde *p, double u) {
   return H[0];
 }
 
-static double lap(const double *u, size_t n, size_t i, double h) {
-  return (u[(i + 1) % n] - 2.0 * u[i] + u[(i + n - 1) % n]) / (h * h);
+static double lap(const gm_pde *p, const double *u, size_t i, double h) {
+  return (gm_pde_u_at(p, u, i, 1) - 2.0 * u[i] + gm_pde_u_at(p, u, i, -1)) / (h * h);
 }
 
 gm_status gm_pde_wave_start(gm_pde *p, gm_error *err) {
@@ -26,7 +26,7 @@ gm_status gm_pde_wave_start(gm_pde *p, gm_error *err) {
   double dt = p->opt.dt;
   for (size_t i = 0; i < n; i++) p->u[i] = p->s[i * 3];
   for (size_t i = 0; i < n; i++) {
-    double acc = lap(p->u, n, i, p->grid.h) - p->eq.dV(p->u[i], p->eq.params);
+    double acc = lap(p, p->u, i, p->grid.h) - p->eq.dV(p->u[i], p->eq.params);
     p->u_prev[i] = p->u[i] - dt * p->s[i * 3 + 1] + 0.5 * dt * dt * acc;
     if (!isfinite(p->u_prev[i]))
       return gm_error_set(err, GM_EDOMAIN, "pde: non-finite start value at point %zu", i);
@@ -40,7 +40,7 @@ void gm_pde_wave_fill_state(gm_pde *p) {
   for (size_t i = 0; i < n; i++) {
     p->s[i * 3] = p->u[i];
     p->s[i * 3 + 1] = (p->u[i] - p->u_prev[i]) / p->opt.dt;
-    p->s[i * 3 + 2] = (p->u[(i + 1) % n] - p->u[i]) / p->grid.h;
+    p->s[i * 3 + 2] = (gm_pde_u_at(p, p->u, i, 1) - p->u[i]) / p->grid.h;
   }
 }
 
@@ -71,18 +71,21 @@ static gm_status ms_step(gm_pde *p, gm_error *err) {
     for (size_t i = 0; i < n; i++) {
       size_t ip = (i + 1) % n, im = (i + n - 1) % n;
       double tt[3], xx = 0.0;
-      size_t idx[3] = {im, i, ip};
+      /* neighbour values on the (twisted) ring: [0] = i−1, [1] = i, [2] = i+1 */
+      double xv[3], uv[3], mv[3];
       for (int k = 0; k < 3; k++) {
-        size_t j = idx[k];
-        tt[k] = (x[j] - 2.0 * u[j] + um[j]) * a;
+        xv[k] = gm_pde_u_at(p, x, i, k - 1);
+        uv[k] = gm_pde_u_at(p, u, i, k - 1);
+        mv[k] = gm_pde_u_at(p, um, i, k - 1);
+        tt[k] = (xv[k] - 2.0 * uv[k] + mv[k]) * a;
       }
       double Ax = 0.25 * (tt[0] + 2.0 * tt[1] + tt[2]);
-      xx = 0.25 * ((x[ip] - 2.0 * x[i] + x[im]) + 2.0 * (u[ip] - 2.0 * u[i] + u[im]) +
-                   (um[ip] - 2.0 * um[i] + um[im])) * b;
-      double up_r = 0.25 * (u[i] + u[ip] + x[i] + x[ip]);   /* (i+½, n+½) */
-      double up_l = 0.25 * (u[im] + u[i] + x[im] + x[i]);   /* (i−½, n+½) */
-      double dn_r = 0.25 * (u[i] + u[ip] + um[i] + um[ip]); /* (i+½, n−½) */
-      double dn_l = 0.25 * (u[im] + u[i] + um[im] + um[i]); /* (i−½, n−½) */
+      xx = 0.25 * ((xv[2] - 2.0 * xv[1] + xv[0]) + 2.0 * (uv[2] - 2.0 * uv[1] + uv[0]) +
+                   (mv[2] - 2.0 * mv[1] + mv[0])) * b;
+      double up_r = 0.25 * (uv[1] + uv[2] + xv[1] + xv[2]); /* (i+½, n+½) */
+      double up_l = 0.25 * (uv[0] + uv[1] + xv[0] + xv[1]); /* (i−½, n+½) */
+      double dn_r = 0.25 * (uv[1] + uv[2] + mv[1] + mv[2]); /* (i+½, n−½) */
+      double dn_l = 0.25 * (uv[0] + uv[1] + mv[0] + mv[1]); /* (i−½, n−½) */
       F[i] = Ax - xx + 0.25 * (p->eq.dV(up_r, c) + p->eq.dV(up_l, c) + p->eq.dV(dn_r, c) +
                                p->eq.dV(dn_l, c));
       double hr = d2V(p, up_r) / 16.0, hl = d2V(p, up_l) / 16.0;
@@ -129,7 +132,7 @@ gm_status gm_pde_wave_step(gm_pde *p, gm_error *err) {
     if (st != GM_OK) return st;
   } else {
     for (size_t i = 0; i < n; i++) {
-      double base = 2.0 * p->u[i] - p->u_prev[i] + dt * dt * lap(p->u, n, i, h);
+      double base = 2.0 * p->u[i] - p->u_prev[i] + dt * dt * lap(p, p->u, i, h);
       if (p->scheme->kind == GM_PDE_WAVE_LF) {
         p->u_new[i] = base - dt * dt * p->eq.dV(p->u[i], c);
         continue;
@@ -177,9 +180,9 @@ double gm_pde_wave_energy(const gm_pde *p) {
   double h = p->grid.h, dt = p->opt.dt, e = 0.0;
   const double *u = p->u, *um = p->u_prev;
   for (size_t i = 0; i < n; i++) {
-    size_t j = (i + 1) % n;
     double ut = (u[i] - um[i]) / dt;
-    e += 0.5 * ut * ut + 0.5 * (um[j] - um[i]) / h * (u[j] - u[i]) / h +
+    e += 0.5 * ut * ut +
+         0.5 * (gm_pde_u_at(p, um, i, 1) - um[i]) / h * (gm_pde_u_at(p, u, i, 1) - u[i]) / h +
          0.5 * (p->eq.V(u[i], p->eq.params) + p->eq.V(um[i], p->eq.params));
   }
   return h * e;
@@ -189,6 +192,7 @@ double gm_pde_wave_momentum(const gm_pde *p) {
   size_t n = p->n;
   double h = p->grid.h, dt = p->opt.dt, m = 0.0;
   for (size_t i = 0; i < n; i++)
-    m -= (p->u[(i + 1) % n] - p->u[(i + n - 1) % n]) / (2.0 * h) * (p->u[i] - p->u_prev[i]) / dt;
+    m -= (gm_pde_u_at(p, p->u, i, 1) - gm_pde_u_at(p, p->u, i, -1)) / (2.0 * h) *
+         (p->u[i] - p->u_prev[i]) / dt;
   return h * m;
 }

@@ -26,7 +26,7 @@ static nls_result nls_run(size_t n, double T) {
   gm_pde_equation eq = gm_pde_nls();
   const gm_pde_scheme *s = NULL;
   cr_assert_eq(gm_pde_scheme_find("preissmann", &s), GM_OK);
-  gm_pde_grid g = {n, h, -PDE_L};
+  gm_pde_grid g = {n, h, -PDE_L, {0}};
   gm_pde_options o = gm_pde_options_defaults();
   o.dt = dt;
   o.track_variations = 1;

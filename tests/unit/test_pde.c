@@ -6,7 +6,7 @@ static void expect_error(const char *scheme, size_t n, double h, double dt, int 
   gm_pde_equation eq = gm_pde_sine_gordon();
   const gm_pde_scheme *s = NULL;
   cr_assert_eq(gm_pde_scheme_find(scheme, &s), GM_OK);
-  gm_pde_grid g = {n, h, 0.0};
+  gm_pde_grid g = {n, h, 0.0, {0}};
   gm_pde_options o = gm_pde_options_defaults();
   o.dt = dt;
   double *s0 = calloc(3 * n, sizeof *s0);
@@ -89,7 +89,7 @@ Test(pde, hessian_by_differences_is_counted) {
   eq.hessian = NULL;
   const gm_pde_scheme *s = NULL;
   gm_pde_scheme_find("preissmann", &s);
-  gm_pde_grid g = {101, 2.0 * PDE_L / 101, -PDE_L};
+  gm_pde_grid g = {101, 2.0 * PDE_L / 101, -PDE_L, {0}};
   gm_pde_options o = gm_pde_options_defaults();
   o.dt = 0.2;
   o.track_variations = 1;
