@@ -54,7 +54,7 @@ typedef struct gm_pde_equation {
 gm_pde_equation gm_pde_sine_gordon(void);
 
 /* Cubic focusing NLS iψ_t + ψ_xx + 2|ψ|²ψ = 0 (Islas, Karpeev & Schober, J. Comput. Phys.
- * 173 (2001) §2) as s = (p, q, v, w), ψ = p + iq, v = p_x, w = q_x: 𝕎_pq = 1, 𝕂_pv = 𝕂_qw = −1,
+ * 173 (2001)) as s = (p, q, v, w), ψ = p + iq, v = p_x, w = q_x: 𝕎_pq = 1, 𝕂_pv = 𝕂_qw = −1,
  * S = ½(p² + q²)² + ½(v² + w²), which reads q_t − v_x = 2|ψ|²p, −p_t − w_x = 2|ψ|²q,
  * p_x = v, q_x = w. Its multisymplectic box scheme is the Preissmann row. */
 gm_pde_equation gm_pde_nls(void);

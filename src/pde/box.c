@@ -48,7 +48,8 @@ static double bilin(size_t d, const double *x, const double *M, const double *y)
   return s;
 }
 
-/* ---- Preissmann: F_i = 𝕎(s̄ⁿ⁺¹ − s̄ⁿ)_{i+½}/Δt + 𝕂(s^{n+½}_{i+1} − s^{n+½}_i)/Δx − ∇S(s^{n+½}_{i+½})
+/* ---- Preissmann:
+ *   F_i = 𝕎(s̄ⁿ⁺¹ − s̄ⁿ)_{i+½}/Δt + 𝕂(s^{n+½}_{i+1} − s^{n+½}_i)/Δx − ∇S(s^{n+½}_{i+½})
  * (notes/003-004 §2.2 [R]; Bridges & Reich 2001) ------------------------------------------- */
 static void preissmann_residual(gm_pde *p, const double *x, double *F) {
   size_t n = p->n, d = p->d;
@@ -103,7 +104,8 @@ static gm_status preissmann_jacobian(gm_pde *p, const double *x) {
 }
 
 /* ---- Euler box (notes/003-004 §2.2 [R]): at point i,
- *   𝕎₊(sⁿ⁺¹ − sⁿ)/Δt + 𝕎₋(sⁿ − sⁿ⁻¹)/Δt + 𝕂₊(sⁿ_{i+1} − sⁿ_i)/Δx + 𝕂₋(sⁿ_i − sⁿ_{i−1})/Δx = ∇S(sⁿ_i).
+ *   𝕎₊(sⁿ⁺¹ − sⁿ)/Δt + 𝕎₋(sⁿ − sⁿ⁻¹)/Δt + 𝕂₊(sⁿ_{i+1} − sⁿ_i)/Δx + 𝕂₋(sⁿ_i − sⁿ_{i−1})/Δx
+ *     = ∇S(sⁿ_i).
  * Only the rows where 𝕎₊ ≠ 0 ("P") contain sⁿ⁺¹; the other rows ("Z") are equations at level
  * n + 1 alone. A step therefore solves for sⁿ⁺¹ the P rows at level n and the Z rows at
  * level n + 1, and the full scheme holds at every level n >= 1. -------------------------- */
@@ -256,10 +258,11 @@ static void euler_tangents(gm_pde *p) {
     const double *Vm = p->tan[1][0], *V = p->tan[1][1], *Vp = p->tan[1][2];
     for (size_t i = 0; i < n; i++) {
       size_t ip = (i + 1) % n, im = (i + n - 1) % n;
-      double f1 = (bilin(d, V + i * d, p->Wp, Up + i * d) - bilin(d, U + i * d, p->Wp, Vp + i * d)) / dt;
-      double f0 = (bilin(d, Vm + i * d, p->Wp, U + i * d) - bilin(d, Um + i * d, p->Wp, V + i * d)) / dt;
-      double g1 = (bilin(d, V + i * d, p->Kp, U + ip * d) - bilin(d, U + i * d, p->Kp, V + ip * d)) / h;
-      double g0 = (bilin(d, V + im * d, p->Kp, U + i * d) - bilin(d, U + im * d, p->Kp, V + i * d)) / h;
+      size_t q = i * d, qp = ip * d, qm = im * d;
+      double f1 = (bilin(d, V + q, p->Wp, Up + q) - bilin(d, U + q, p->Wp, Vp + q)) / dt;
+      double f0 = (bilin(d, Vm + q, p->Wp, U + q) - bilin(d, Um + q, p->Wp, V + q)) / dt;
+      double g1 = (bilin(d, V + q, p->Kp, U + qp) - bilin(d, U + q, p->Kp, V + qp)) / h;
+      double g0 = (bilin(d, V + qm, p->Kp, U + q) - bilin(d, U + qm, p->Kp, V + q)) / h;
       double scale = fabs(f1) + fabs(f0) + fabs(g1) + fabs(g0);
       p->msres[i] = scale > 0.0 ? fabs(f1 - f0 + g1 - g0) / scale : 0.0;
     }

@@ -49,7 +49,7 @@ gm_pde_equation gm_pde_sine_gordon(void) {
   return e;
 }
 
-/* ---- NLS: Islas, Karpeev & Schober (2001) eq. (2.3) -------------------------------------- */
+/* ---- NLS: Islas, Karpeev & Schober, J. Comput. Phys. 173 (2001) ------------------------- */
 static double nls_S(const double *s, const void *ctx) {
   (void)ctx;
   double r = s[0] * s[0] + s[1] * s[1];
@@ -150,8 +150,8 @@ static const gm_pde_scheme schemes[] = {
     {"preissmann", GM_PDE_PREISSMANN, 2, 2, 1, 0, 0, 0,
      "(ω^{n+1}_{i+½} − ωⁿ_{i+½})/Δt + (κ^{n+½}_{i+1} − κ^{n+½}_i)/Δx = 0, ω from space "
      "averages, κ from time averages",
-     "Preissmann box = multisymplectic midpoint: Bridges & Reich, Phys. Lett. A 284 (2001) "
-     "eq. (4.3); seed 004 §2.2 [R] in notes/003-004"},
+     "Preissmann box = multisymplectic midpoint: Bridges & Reich, Phys. Lett. A 284 (2001); "
+     "seed 004 §2.2 [R] in notes/003-004"},
     {"euler-box", GM_PDE_EULER_BOX, 1, 2, 1, 0, 0, 0,
      "δ_t⁺(dsⁿ⁻¹∧𝕎₊dsⁿ) + δ_x⁺(ds_{i−1}∧𝕂₊ds_i) = 0",
      "Euler box: Moore & Reich, Numer. Math. 95 (2003); Bridges & Reich, J. Phys. A 39 (2006) "
@@ -164,7 +164,7 @@ static const gm_pde_scheme schemes[] = {
     {"ms", GM_PDE_WAVE_MS, 2, 2, 1, 0, 0, 1,
      "the Preissmann law with v, w eliminated",
      "seed 004 sine-Gordon scheme MS, nine-point standard form [R]: A_x δ_t²u − A_t δ_x²u + "
-     "¼ΣV'(ū) = 0 (notes/003-004 §2.2; Bridges & Reich 2001 §5)"},
+     "¼ΣV'(ū) = 0 (notes/003-004 §2.2; Bridges & Reich 2001)"},
 };
 #define N_SCHEMES (sizeof schemes / sizeof schemes[0])
 

@@ -4,7 +4,7 @@
  *   EC: the same with V'(uⁿ_i) → (V(uⁿ⁺¹_i) − V(uⁿ⁻¹_i))/(uⁿ⁺¹_i − uⁿ⁻¹_i)
  *   MS: A_x δ_t²u − A_t δ_x²u + ¼ Σ V'(ū) = 0 over the four cells around (n, i), ū the
  *       four-point cell average, A_x z = (z_{i+1} + 2z_i + z_{i−1})/4 (A_t likewise): the
- *       Preissmann box with v, w eliminated (Bridges & Reich 2001 §5). */
+ *       Preissmann box with v, w eliminated (Bridges & Reich 2001). */
 #include <math.h>
 #include <string.h>
 

@@ -31,8 +31,8 @@ Test(pde_order, ms_joint) { joint_order("ms", 0, 1.9, 2.1); }
 /* u(T) on a fixed grid: the time error alone (reference: the same scheme with Δt/16) */
 static double time_order(const char *scheme, size_t n, double dt) {
   double T = 4.0;
-  gm_pde *r = pde_breather_solver(scheme, n, dt / 16, 0), *a = pde_breather_solver(scheme, n, dt, 0),
-         *b = pde_breather_solver(scheme, n, dt / 2, 0);
+  gm_pde *r = pde_breather_solver(scheme, n, dt / 16, 0);
+  gm_pde *a = pde_breather_solver(scheme, n, dt, 0), *b = pde_breather_solver(scheme, n, dt / 2, 0);
   gm_error err = {{0}};
   cr_assert_eq(gm_pde_advance(r, (size_t)llround(16 * T / dt), &err), GM_OK, "%s", err.message);
   cr_assert_eq(gm_pde_advance(a, (size_t)llround(T / dt), &err), GM_OK, "%s", err.message);
