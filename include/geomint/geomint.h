@@ -17,6 +17,7 @@
 #include "geomint/oscillatory.h"
 #include "geomint/celestial.h"
 #include "geomint/reduction.h"
+#include "geomint/pde.h"
 
 #define GM_VERSION_MAJOR 0
 #define GM_VERSION_MINOR 1

@@ -26,6 +26,7 @@ extern const cli_command cli_list_command, cli_run_command, cli_order_command,
 extern const cli_command cli_oscillatory_command;
 extern const cli_command cli_maxwell_command; /* maxwell.c */
 extern const cli_command cli_reduction_command; /* reduction.c */
+extern const cli_command cli_pde_command;
 
 /* "geomint COMMAND: message" on stderr, one line. */
 #if defined(__GNUC__)

@@ -1,0 +1,290 @@
+/* geomint pde: multisymplectic PDE integrators (src/pde). `run` integrates sine-Gordon from a
+ * breather and writes the final state as CSV; `b10` is seed 004's stability experiment
+ * (Figs. 11–13): LF/EC/MS at Δt = Δx and EC/MS at Δt = 2Δx, with one figure. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli/cli.h"
+
+static const char usage[] =
+    "usage: geomint pde run sine-gordon [--scheme NAME] [--n N] [--dt DT] [--T T] [--omega W]\n"
+    "                                   [--out FILE.csv]\n"
+    "       geomint pde b10 [--out DIR] [--no-plot]\n"
+    "\n"
+    "Sine-Gordon u_tt - u_xx + sin u = 0 on [-20, 20) periodic, started from the standing\n"
+    "breather u = 4 atan((k/w) sin(w t) / cosh(k x)), k = sqrt(1 - w^2), at t = 0 (u = 0,\n"
+    "u_t = 4k sech(kx)); default w = 0.5.\n"
+    "run: schemes preissmann (odd N), euler-box, lf, ec, ms (default ms, N 200, dt 0.1, T 10);\n"
+    "     prints energy, momentum and the max error against the exact breather; --out writes\n"
+    "     x,u,v,w,exact at T.\n"
+    "b10: N = 200 (dx = 0.2): LF, EC, MS with dt = dx up to t = 500, EC and MS with dt = 2 dx\n"
+    "     up to t = 100; a run that leaves |u| <= 100 or fails stops there. Writes\n"
+    "     DIR/b10-*.dat and draws DIR/b10.png (running max of max|u| against t).\n";
+
+#define L_HALF 20.0
+
+static double *breather_data(size_t n, double omega) {
+  double h = 2.0 * L_HALF / (double)n, k = sqrt(1.0 - omega * omega);
+  double *s = calloc(3 * n, sizeof *s);
+  if (s == NULL) return NULL;
+  for (size_t i = 0; i < n; i++) s[3 * i + 1] = 4.0 * k / cosh(k * (-L_HALF + (double)i * h));
+  return s;
+}
+
+static double breather(double x, double t, double omega) {
+  double k = sqrt(1.0 - omega * omega);
+  return 4.0 * atan(k / omega * sin(omega * t) / cosh(k * x));
+}
+
+static int make_solver(const char *cmd, const char *scheme_name, size_t n, double dt,
+                       double omega, gm_pde **out) {
+  const gm_pde_scheme *scheme = NULL;
+  if (gm_pde_scheme_find(scheme_name, &scheme) != GM_OK) {
+    cli_error(cmd, "unknown scheme '%s': preissmann, euler-box, lf, ec or ms", scheme_name);
+    return CLI_EXIT_USAGE;
+  }
+  gm_pde_equation eq = gm_pde_sine_gordon();
+  gm_pde_grid g = {n, 2.0 * L_HALF / (double)n, -L_HALF, {0}};
+  gm_pde_options o = gm_pde_options_defaults();
+  o.dt = dt;
+  double *s0 = breather_data(n, omega);
+  if (s0 == NULL) {
+    cli_error(cmd, "out of memory");
+    return CLI_EXIT_FAILURE;
+  }
+  gm_error err = {{0}};
+  gm_status st = gm_pde_create(&g, &eq, scheme, &o, s0, out, &err);
+  free(s0);
+  if (st != GM_OK) {
+    cli_error(cmd, "%s", err.message);
+    return st == GM_ENOMEM ? CLI_EXIT_FAILURE : CLI_EXIT_USAGE;
+  }
+  return CLI_EXIT_OK;
+}
+
+static int pde_run(int argc, char **argv) {
+  const char *scheme = "ms", *out = NULL, *positional[1] = {NULL};
+  size_t n = 200, n_pos = 0;
+  double dt = 0.1, T = 10.0, omega = 0.5;
+  cli_option options[] = {{"--scheme", CLI_ARG_STRING, &scheme, 0},
+                          {"--n", CLI_ARG_COUNT, &n, 0},
+                          {"--dt", CLI_ARG_DOUBLE, &dt, 0},
+                          {"--T", CLI_ARG_DOUBLE, &T, 0},
+                          {"--omega", CLI_ARG_DOUBLE, &omega, 0},
+                          {"--out", CLI_ARG_STRING, &out, 0}};
+  int rc = cli_parse("pde run", argc, argv, options, 6, positional, 1, &n_pos);
+  if (rc == CLI_HELP) {
+    fputs(usage, stdout);
+    return CLI_EXIT_OK;
+  }
+  if (rc != CLI_EXIT_OK) return rc;
+  if (n_pos != 1 || strcmp(positional[0], "sine-gordon") != 0) {
+    cli_error("pde run", "which equation? sine-gordon");
+    return CLI_EXIT_USAGE;
+  }
+  if (cli_check_positive("pde run", "--dt", dt) != CLI_EXIT_OK ||
+      cli_check_positive("pde run", "--T", T) != CLI_EXIT_OK ||
+      cli_check_step_count("pde run", T, dt) != CLI_EXIT_OK)
+    return CLI_EXIT_USAGE;
+  if (!(omega > 0.0 && omega < 1.0)) {
+    cli_error("pde run", "--omega must lie in (0, 1) (got %g)", omega);
+    return CLI_EXIT_USAGE;
+  }
+  if (n > 100000000) {
+    cli_error("pde run", "--n %zu is too large", n);
+    return CLI_EXIT_USAGE;
+  }
+  gm_pde *p = NULL;
+  if ((rc = make_solver("pde run", scheme, n, dt, omega, &p)) != CLI_EXIT_OK) return rc;
+  double e0 = gm_pde_energy(p), m0 = gm_pde_momentum(p);
+  size_t steps = (size_t)llround(T / dt);
+  gm_error err = {{0}};
+  gm_status st = gm_pde_advance(p, steps, &err);
+  if (st != GM_OK) {
+    cli_error("pde run", "%s", err.message);
+    gm_pde_free(p);
+    return CLI_EXIT_FAILURE;
+  }
+  const double *s = gm_pde_state(p);
+  double h = 2.0 * L_HALF / (double)n, t = gm_pde_time(p), e = 0.0;
+  for (size_t i = 0; i < n; i++)
+    e = fmax(e, fabs(s[3 * i] - breather(-L_HALF + (double)i * h, t, omega)));
+  printf("pde run sine-gordon --scheme %s: n %zu, dx %g, dt %g, %zu steps to t = %g\n", scheme,
+         n, h, dt, steps, t);
+  printf("  energy %.15g (relative change %.3e)\n", gm_pde_energy(p),
+         fabs(gm_pde_energy(p) - e0) / fabs(e0));
+  printf("  momentum %.6e (change %.3e)\n", gm_pde_momentum(p), gm_pde_momentum(p) - m0);
+  printf("  max |u - breather| %.3e\n", e);
+  if (out != NULL) {
+    FILE *f = fopen(out, "w");
+    if (f == NULL) {
+      cli_error("pde run", "cannot write '%s': %s", out, strerror(errno));
+      gm_pde_free(p);
+      return CLI_EXIT_FAILURE;
+    }
+    fprintf(f, "x,u,v,w,exact\n");
+    for (size_t i = 0; i < n; i++) {
+      double x = -L_HALF + (double)i * h;
+      fprintf(f, "%.10g,%.17g,%.17g,%.17g,%.17g\n", x, s[3 * i], s[3 * i + 1], s[3 * i + 2],
+              breather(x, t, omega));
+    }
+    fclose(f);
+    printf("  state written to %s\n", out);
+  }
+  gm_pde_free(p);
+  return CLI_EXIT_OK;
+}
+
+/* ---- B10 --------------------------------------------------------------------------------- */
+typedef struct b10_run {
+  const char *scheme;
+  double ratio, T; /* Δt/Δx, end time */
+} b10_run;
+
+static const b10_run b10_runs[] = {{"lf", 1.0, 500.0}, {"ec", 1.0, 500.0}, {"ms", 1.0, 500.0},
+                                   {"ec", 2.0, 100.0}, {"ms", 2.0, 100.0}};
+#define N_B10 (sizeof b10_runs / sizeof b10_runs[0])
+
+static double max_abs_u(const gm_pde *p) {
+  const double *s = gm_pde_state(p);
+  double m = 0.0;
+  for (size_t i = 0; i < gm_pde_n(p); i++) m = fmax(m, fabs(s[3 * i]));
+  return m;
+}
+
+static int b10_one(const b10_run *r, const char *dir, char *summary, size_t cap) {
+  size_t n = 200;
+  double h = 2.0 * L_HALF / (double)n, dt = r->ratio * h;
+  gm_pde *p = NULL;
+  int rc = make_solver("pde b10", r->scheme, n, dt, 0.5, &p);
+  if (rc != CLI_EXIT_OK) return rc;
+  char path[4200];
+  snprintf(path, sizeof path, "%s/b10-%s-%g.dat", dir, r->scheme, r->ratio);
+  FILE *f = fopen(path, "w");
+  if (f == NULL) {
+    cli_error("pde b10", "cannot write '%s': %s", path, strerror(errno));
+    gm_pde_free(p);
+    return CLI_EXIT_FAILURE;
+  }
+  fprintf(f, "# t max|u| relative-energy-change running-max|u| (%s, dt/dx = %g)\n", r->scheme,
+          r->ratio);
+  double e0 = gm_pde_energy(p), emax = 0.0, run_max = 0.0;
+  size_t steps = (size_t)llround(r->T / dt), every = r->ratio > 1.0 ? 1 : 5;
+  const char *outcome = NULL;
+  gm_error err = {{0}};
+  size_t k;
+  for (k = 0; k < steps; k++) {
+    gm_status st = gm_pde_advance(p, 1, &err);
+    if (st != GM_OK) {
+      outcome = "failed";
+      break;
+    }
+    double m = max_abs_u(p), de = fabs(gm_pde_energy(p) - e0) / fabs(e0);
+    run_max = fmax(run_max, m);
+    if ((k + 1) % every == 0 || m > 100.0)
+      fprintf(f, "%g %.6e %.6e %.6e\n", gm_pde_time(p), m, de, run_max);
+    if (m > 100.0) {
+      outcome = "unbounded";
+      break;
+    }
+    emax = fmax(emax, de);
+  }
+  fclose(f);
+  if (outcome == NULL)
+    snprintf(summary, cap, "%-3s dt/dx = %g: bounded to t = %g (max|u| %.3f, max relative "
+             "energy change %.2e)", r->scheme, r->ratio, gm_pde_time(p), max_abs_u(p), emax);
+  else if (strcmp(outcome, "failed") == 0)
+    snprintf(summary, cap, "%-3s dt/dx = %g: fails at step %zu (t = %g): %s", r->scheme,
+             r->ratio, k + 1, (double)(k + 1) * dt, err.message);
+  else
+    snprintf(summary, cap, "%-3s dt/dx = %g: |u| > 100 at step %zu (t = %g)", r->scheme,
+             r->ratio, k + 1, gm_pde_time(p));
+  gm_pde_free(p);
+  return CLI_EXIT_OK;
+}
+
+static int b10_plot(const char *dir) {
+  char script[4200], cmd[8600];
+  snprintf(script, sizeof script, "%s/b10.gp", dir);
+  FILE *g = fopen(script, "w");
+  if (g == NULL) {
+    cli_error("pde b10", "cannot write '%s': %s", script, strerror(errno));
+    return CLI_EXIT_FAILURE;
+  }
+  fprintf(g,
+          "set terminal pngcairo size 1200,500 font ',10'\n"
+          "set output '%s/b10.png'\n"
+          "set multiplot layout 1,2 title 'B10: sine-Gordon breather (w = 0.5), [-20,20) "
+          "periodic, N = 200, dx = 0.2'\n"
+          "set logscale y\nset xlabel 't'\nset ylabel 'max |u| over x and over times <= t'\n"
+          "set key top left\n"
+          "set yrange [1:1e3]\n"
+          "set title 'dt = dx'\n"
+          "plot '%s/b10-lf-1.dat' u 1:4 w l lw 2 lc 1 t 'LF', '%s/b10-ec-1.dat' u 1:4 w l lw 2 "
+          "lc 2 t 'EC', '%s/b10-ms-1.dat' u 1:4 w l lw 2 dt 2 lc 3 t 'MS'\n"
+          "set title 'dt = 2 dx (LF refused: CFL)'\n"
+          "plot '%s/b10-ec-2.dat' u 1:4 w lp lw 2 lc 2 t 'EC', '%s/b10-ms-2.dat' u 1:4 w l lw 2 "
+          "dt 2 lc 3 t 'MS'\n"
+          "unset multiplot\n",
+          dir, dir, dir, dir, dir, dir);
+  fclose(g);
+  snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", script);
+  if (system(cmd) != 0) {
+    cli_error("pde b10", "gnuplot failed on %s", script);
+    return CLI_EXIT_FAILURE;
+  }
+  printf("  figure: %s/b10.png\n", dir);
+  return CLI_EXIT_OK;
+}
+
+static int pde_b10(int argc, char **argv) {
+  const char *dir = "pde-output";
+  int no_plot = 0;
+  size_t n_pos = 0;
+  cli_option options[] = {{"--out", CLI_ARG_STRING, &dir, 0},
+                          {"--no-plot", CLI_ARG_FLAG, &no_plot, 0}};
+  int rc = cli_parse("pde b10", argc, argv, options, 2, NULL, 0, &n_pos);
+  if (rc == CLI_HELP) {
+    fputs(usage, stdout);
+    return CLI_EXIT_OK;
+  }
+  if (rc != CLI_EXIT_OK) return rc;
+  if (strchr(dir, '\'') != NULL) {
+    cli_error("pde b10", "--out: the directory name may not contain a quote");
+    return CLI_EXIT_USAGE;
+  }
+  if (!no_plot && !cli_gnuplot_available()) {
+    cli_error("pde b10", "gnuplot is not installed (or not on PATH): use --no-plot");
+    return CLI_EXIT_FAILURE;
+  }
+  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+    cli_error("pde b10", "cannot create the directory '%s': %s", dir, strerror(errno));
+    return CLI_EXIT_FAILURE;
+  }
+  printf("B10 (seed 004 Figs. 11-13): sine-Gordon breather w = 0.5 on [-20, 20), N = 200\n");
+  for (size_t k = 0; k < N_B10; k++) {
+    char summary[512];
+    if ((rc = b10_one(&b10_runs[k], dir, summary, sizeof summary)) != CLI_EXIT_OK) return rc;
+    printf("  %s\n", summary);
+  }
+  return no_plot ? CLI_EXIT_OK : b10_plot(dir);
+}
+
+static int pde_main(int argc, char **argv) {
+  if (argc >= 1 && strcmp(argv[0], "run") == 0) return pde_run(argc - 1, argv + 1);
+  if (argc >= 1 && strcmp(argv[0], "b10") == 0) return pde_b10(argc - 1, argv + 1);
+  if (argc >= 1 && (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) {
+    fputs(usage, stdout);
+    return CLI_EXIT_OK;
+  }
+  cli_error("pde", "which subcommand? run or b10 (see geomint pde --help)");
+  return CLI_EXIT_USAGE;
+}
+
+const cli_command cli_pde_command = {
+    "pde", "multisymplectic PDE schemes: sine-Gordon runs and the B10 stability experiment",
+    usage, pde_main};

@@ -1,0 +1,88 @@
+/* Private declarations of the pde module (DESIGN §2: one concern per file). */
+#ifndef GM_PDE_INTERNAL_H
+#define GM_PDE_INTERNAL_H
+
+#include "core/internal.h"
+#include "geomint/pde.h"
+
+#define GM_PDE_MAX_OBSERVERS 8
+
+/* ---- banded LU with partial pivoting (band.c) ----------------------------------------------- */
+/* A periodic ring of blocks is made banded by the interleaved ordering 0, n−1, 1, n−2, 2, ...
+ * (neighbours i, i±1 end up at most two positions apart), so the Newton matrix of a box scheme
+ * needs no dense N×N solve: bandwidth kl = ku = 3d − 1. Row-major band storage: A(r, c) at
+ * ab[r·w + c − r + kl], w = 2kl + ku + 1 (ku + kl above the diagonal after pivoting). */
+typedef struct gm_band {
+  size_t n, kl, ku, w;
+  double *ab; /* owned, n·w */
+  int *piv;   /* owned, n */
+} gm_band;
+gm_status gm_band_init(gm_band *b, size_t n, size_t kl, size_t ku);
+void gm_band_release(gm_band *b);
+void gm_band_zero(gm_band *b);
+void gm_band_add(gm_band *b, size_t r, size_t c, double v); /* |c − r| within the band */
+gm_status gm_band_factor(gm_band *b);
+void gm_band_solve(const gm_band *b, double *x);
+/* pos[i] = position of ring block i in the interleaved order (n entries written). */
+void gm_ring_positions(size_t n, size_t *pos);
+
+struct gm_pde_observer {
+  size_t every;
+  gm_pde_observer_fn fn;
+  void *ctx;
+};
+
+struct gm_pde {
+  gm_pde_grid grid;
+  gm_pde_equation eq;
+  const gm_pde_scheme *scheme;
+  gm_pde_options opt;
+  size_t d, n, nu; /* components, points, unknowns n·d */
+  size_t steps;
+  double Wp[GM_PDE_MAX_DIM * GM_PDE_MAX_DIM], Wm[GM_PDE_MAX_DIM * GM_PDE_MAX_DIM];
+  double Kp[GM_PDE_MAX_DIM * GM_PDE_MAX_DIM], Km[GM_PDE_MAX_DIM * GM_PDE_MAX_DIM];
+  /* state: s (current), s_prev (one step back), s_new (Newton iterate); all owned, nu each */
+  double *s, *s_prev, *s_new, *F, *dx, *hess, *work;
+  size_t *pos; /* ring positions (owned) */
+  gm_band band;
+  /* tangent variations U (k = 0) and V (k = 1): prev, cur, new (owned, nu each) */
+  double *tan[2][3];
+  double *msres; /* per-cell relative multisymplectic residual of the last step (owned) */
+  int ms_valid;
+  /* scalar wave schemes: u^{n−1}, u^n, u^{n+1} (owned, n each) */
+  double *u_prev, *u, *u_new;
+  struct gm_pde_observer observers[GM_PDE_MAX_OBSERVERS];
+  size_t n_observers;
+  gm_pde_stats stats;
+};
+
+/* Component a of point i + shift (shift in {−1, 0, 1}) of a state x on the twisted ring:
+ * x_{i+n} = x_i + twist. */
+static inline double gm_pde_at(const gm_pde *p, const double *x, size_t i, int shift, size_t a) {
+  size_t n = p->n, d = p->d;
+  if (shift > 0 && i == n - 1) return x[a] + p->grid.twist[a];
+  if (shift < 0 && i == 0) return x[(n - 1) * d + a] - p->grid.twist[a];
+  size_t j = shift > 0 ? i + 1 : shift < 0 ? i - 1 : i;
+  return x[j * d + a];
+}
+/* The same for the scalar schemes' u arrays (twist of component 0). */
+static inline double gm_pde_u_at(const gm_pde *p, const double *u, size_t i, int shift) {
+  size_t n = p->n;
+  if (shift > 0 && i == n - 1) return u[0] + p->grid.twist[0];
+  if (shift < 0 && i == 0) return u[n - 1] - p->grid.twist[0];
+  return u[shift > 0 ? i + 1 : shift < 0 ? i - 1 : i];
+}
+
+/* Hessian of S at s (d×d), analytic or by central differences of the gradient (symmetrised;
+ * counted). work: 2d doubles. */
+void gm_pde_hessian(gm_pde *p, const double *s, double *H, double *work);
+
+/* One step of each family (box.c, wave.c). */
+gm_status gm_pde_box_step(gm_pde *p, gm_error *err);
+gm_status gm_pde_wave_step(gm_pde *p, gm_error *err);
+gm_status gm_pde_wave_start(gm_pde *p, gm_error *err); /* u¹ from u⁰, u_t */
+void gm_pde_wave_fill_state(gm_pde *p);
+double gm_pde_wave_energy(const gm_pde *p);
+double gm_pde_wave_momentum(const gm_pde *p);
+
+#endif
