@@ -34,8 +34,8 @@ static void print_usage(FILE *f) {
         "commands:\n",
         f);
   for (size_t i = 0; i < N_COMMANDS; ++i)
-    fprintf(f, "  %-7s %s\n", commands[i]->name, commands[i]->summary);
-  fputs("  help    show this message, or a command's: geomint help COMMAND\n\n"
+    fprintf(f, "  %-11s %s\n", commands[i]->name, commands[i]->summary);
+  fputs("  help        show this message, or a command's: geomint help COMMAND\n\n"
         "options:\n"
         "  --help     show this message\n"
         "  --version  print the version\n\n"

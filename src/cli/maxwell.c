@@ -65,8 +65,8 @@ static int maxwell_main(int argc, char **argv) {
 }
 
 const cli_command cli_maxwell_command = {"maxwell",
-                                         "Maxwell FDTD on Cartesian grids: run a scene, cavity "
-                                         "check, experiment E4",
+                                         "Maxwell: Yee FDTD scenes, cavity check, E4; meshes (DEC "
+                                         "leapfrog, AVI)",
                                          usage, maxwell_main};
 
 /* The usage text, for the subcommands' --help. */
