@@ -471,4 +471,5 @@ static gm_status run(gm_integrator *it, const gm_run *r, size_t k_from, size_t k
   return st;
 }
 
-const gm_stepper gm_near_integrable_stepper = {init, step, release, invalidate, run, NULL};
+/* it keeps its own state and compensation carries, so run() serves compensated runs too */
+const gm_stepper gm_near_integrable_stepper = {init, step, release, invalidate, run, NULL, 1};

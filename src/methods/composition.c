@@ -97,7 +97,7 @@ static gm_status set_solver(gm_integrator *it, gm_solver solver) {
   return st;
 }
 
-const gm_stepper gm_composition_stepper = {init, step, release, invalidate, NULL, set_solver};
+const gm_stepper gm_composition_stepper = {init, step, release, invalidate, NULL, set_solver, 0};
 
 /* Checkpoints: the state of the basic method's integrator (its starting values). */
 static const gm_stepper_state *inner_state(const gm_integrator *it) {

@@ -304,7 +304,7 @@ static gm_status set_solver(gm_integrator *it, gm_solver solver) {
 }
 
 const gm_stepper gm_discrete_gradient_stepper = {init,    step, release, invalidate,
-                                                 NULL,    set_solver};
+                                                 NULL,    set_solver, 0};
 
 gm_status gm_discrete_gradient_set_quadrature(gm_integrator *it, size_t n_points) {
   dg_work *w = it->work;

@@ -59,4 +59,4 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
   return GM_OK;
 }
 
-const gm_stepper gm_explicit_rk_stepper = {init, step, release, NULL, NULL, NULL};
+const gm_stepper gm_explicit_rk_stepper = {init, step, release, NULL, NULL, NULL, 0};

@@ -642,7 +642,7 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
   return GM_OK;
 }
 
-const gm_stepper gm_implicit_rk_stepper = {init, step, release, invalidate, NULL, set_solver};
+const gm_stepper gm_implicit_rk_stepper = {init, step, release, invalidate, NULL, set_solver, 0};
 
 /* Checkpoints: the previous step's stage increments and step size, from which the next step
  * starts its iteration (collocation polynomial extrapolated); with simplified Newton through the

@@ -242,4 +242,4 @@ static void invalidate(gm_integrator *it) {
   if (it->work != NULL) gm_lie_galerkin_invalidate(it->work);
 }
 
-const gm_stepper gm_lie_group_stepper = {init, step, release, invalidate, NULL, NULL};
+const gm_stepper gm_lie_group_stepper = {init, step, release, invalidate, NULL, NULL, 0};

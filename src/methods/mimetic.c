@@ -439,7 +439,7 @@ static gm_status set_solver(gm_integrator *it, gm_solver solver) {
   return GM_OK;
 }
 
-const gm_stepper gm_mimetic_stepper = {init, step, release, invalidate, NULL, set_solver};
+const gm_stepper gm_mimetic_stepper = {init, step, release, invalidate, NULL, set_solver, 0};
 
 gm_status gm_mimetic_set_quadrature(gm_integrator *it, size_t n_points) {
   mimetic_work *w = it->work;

@@ -526,7 +526,7 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
   return GM_OK;
 }
 
-const gm_stepper gm_oscillatory_stepper = {init, step, release, invalidate, NULL, NULL};
+const gm_stepper gm_oscillatory_stepper = {init, step, release, invalidate, NULL, NULL, 0};
 
 /* ---- options ---------------------------------------------------------------------------- */
 

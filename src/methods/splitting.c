@@ -202,7 +202,7 @@ static gm_status run(gm_integrator *it, const gm_run *r, size_t k_from, size_t k
   return st;
 }
 
-const gm_stepper gm_splitting_stepper = {init, step, release, invalidate, run, NULL};
+const gm_stepper gm_splitting_stepper = {init, step, release, invalidate, run, NULL, 0};
 
 /* Checkpoints: the force kept for the first kick of the next step (FSAL), so that a restarted
  * run evaluates (and counts) exactly the forces an uninterrupted one does. */

@@ -237,7 +237,7 @@ static gm_status set_solver(gm_integrator *it, gm_solver solver) {
   return GM_OK;
 }
 
-const gm_stepper gm_variational_stepper = {init, step, release, invalidate, NULL, set_solver};
+const gm_stepper gm_variational_stepper = {init, step, release, invalidate, NULL, set_solver, 0};
 
 gm_status gm_variational_set_alpha(gm_integrator *it, double alpha) {
   if (it == NULL) return GM_EINVAL;

@@ -382,7 +382,7 @@ static gm_status set_solver(gm_integrator *it, gm_solver solver) {
   return GM_OK;
 }
 
-const gm_stepper gm_sem_stepper = {init, step, release, invalidate, NULL, set_solver};
+const gm_stepper gm_sem_stepper = {init, step, release, invalidate, NULL, set_solver, 0};
 const gm_stepper_state gm_sem_stepper_state = {1, state_size, state_save, state_load};
 
 static sem_work *sem_of(const gm_integrator *it) {

@@ -343,9 +343,7 @@ static size_t next_observation(const gm_integrator *it, size_t from) {
 
 /* Steps k_from+1 .. k_to of the run, one at a time or by the stepper's own loop. */
 static gm_status run_chunk(gm_integrator *it, const gm_run *run, size_t k_from, size_t k_to) {
-  /* near-integrable steppers keep their own state and carries: their run() compensates */
-  if (it->stepper->run != NULL &&
-      (!it->compensated || it->method->family == GM_FAMILY_NEAR_INTEGRABLE))
+  if (it->stepper->run != NULL && (!it->compensated || it->stepper->run_compensates))
     return it->stepper->run(it, run, k_from, k_to);
   gm_status st = GM_OK;
   for (size_t k = k_from + 1; k <= k_to && st == GM_OK; ++k)

@@ -38,6 +38,9 @@ typedef struct gm_stepper {
   gm_status (*run)(gm_integrator *it, const gm_run *run, size_t k_from, size_t k_to);
   /* Optional: accept a solver for the stage equations (it->solver is set on success). */
   gm_status (*set_solver)(gm_integrator *it, gm_solver solver);
+  /* Non-zero: run() also compensates when compensated summation is on (a stepper that keeps
+   * its own state and carries, as the near-integrable splittings do). */
+  int run_compensates;
 } gm_stepper;
 
 struct gm_integrator {
