@@ -83,6 +83,8 @@ extern const gm_model_def gm_model_central_body;
 /* split potentials U + W (issue 12) */
 extern const gm_model_def gm_model_toy_resonance;
 extern const gm_model_def gm_model_stiff_spring_pendulum;
+/* m, g, k, l, theta0: the spring pendulum in either form (spring_pendulum.c) */
+extern const gm_param_info gm_spring_pendulum_params[5];
 extern const gm_model_def gm_model_diatomic_chain;
 
 #endif

@@ -68,7 +68,8 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   return GM_OK;
 }
 
-static const gm_param_info params[] = {
+/* shared with the Cartesian form (stiff_spring_pendulum.c): one system, one set of defaults */
+const gm_param_info gm_spring_pendulum_params[] = {
     {"m", 1.0, "mass", GM_PARAM_NUMBER},
     {"g", 9.81, "gravity", GM_PARAM_NUMBER},
     {"k", 10000.0, "spring constant (stiff)", GM_PARAM_NUMBER},
@@ -80,5 +81,5 @@ const gm_model_def gm_model_spring_pendulum = {
     {"spring-pendulum",
      "stiff spring pendulum in (a, theta), L = m(a'^2 + (l+a)^2 theta'^2)/2 + m g (l+a) cos "
      "theta - k a^2/2 (seed 001 5.7.2)",
-     GM_PROBLEM_LAGRANGIAN, 2, 5, params, 0, NULL, 0},
+     GM_PROBLEM_LAGRANGIAN, 2, 5, gm_spring_pendulum_params, 0, NULL, 0},
     sizeof(spring), NULL, setup, NULL, NULL};

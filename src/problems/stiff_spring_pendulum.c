@@ -109,17 +109,9 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   return GM_OK;
 }
 
-static const gm_param_info params[] = {
-    {"m", 1.0, "mass", GM_PARAM_NUMBER},
-    {"g", 9.81, "gravity", GM_PARAM_NUMBER},
-    {"k", 10000.0, "spring constant (stiff)", GM_PARAM_NUMBER},
-    {"l", 1.0, "rest length", GM_PARAM_NUMBER},
-    {"theta0", 1.0, "initial angle", GM_PARAM_NUMBER},
-};
-
 const gm_model_def gm_model_stiff_spring_pendulum = {
     {"stiff-spring-pendulum",
      "stiff spring pendulum in Cartesian q = (x, y): U = m g y (slow), W = k(|q| - l)^2/2 "
      "(fast, nonlinear) (seed 001 5.7.2)",
-     GM_PROBLEM_SEPARABLE, 2, 5, params, 0, NULL, 0},
+     GM_PROBLEM_SEPARABLE, 2, 5, gm_spring_pendulum_params, 0, NULL, 0},
     sizeof(ssp), NULL, setup, NULL, NULL};
