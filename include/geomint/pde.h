@@ -15,6 +15,7 @@
 #include <stddef.h>
 
 #include "geomint/core.h"
+#include "geomint/pde_spectral.h" /* Schrödinger, spectral Hodge star, tent-function VI */
 
 #ifdef __cplusplus
 extern "C" {
