@@ -159,7 +159,8 @@ double gm_tentvi_energy(const gm_tentvi *m);
 /* Tangent variations: set two first variations (U0, U1), (W0, W1) of the first two levels
  * (n values each, copied); they are then advanced with the linearised DEL and
  * gm_tentvi_symplectic_form returns the discrete symplectic form of the time strip,
- *   ω = Σ_i [U^j M W^{j+1} − W^j M U^{j+1}]_i,  M = D₁D₂ of the strip's L_d,
+ *   ω = Σ_i [U^j M W^{j+1} − W^j M U^{j+1}]_i,  M = D₁D₂ of the strip's L_d
+ *   = −(Δx/(6Δt))(z_{i−1} + 4z_i + z_{i+1}) + (Δt/(6Δx))(z_{i+1} − 2z_i + z_{i−1}),
  * which the multisymplectic form formula keeps constant; scale (may be NULL) receives the sum of
  * the |terms| (for a relative residual). NAN before variations are set. */
 gm_status gm_tentvi_set_variations(gm_tentvi *m, const double *U0, const double *U1,
