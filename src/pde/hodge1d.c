@@ -68,10 +68,13 @@ void gm_wave1d_star1(gm_wave1d *w, const double *edges, double *dual) {
 
 void gm_wave1d_laplacian(gm_wave1d *w, const double *in, double *out) {
   size_t n = w->n;
-  for (size_t j = 0; j < n; j++) w->edge[j] = in[(j + 1) % n] - in[j]; /* d, primal */
-  star_apply(w, w->edge);                                               /* dual 0-form */
-  for (size_t j = 0; j < n; j++) out[j] = w->edge[j] - w->edge[(j + n - 1) % n]; /* d, dual */
-  star_apply(w, out);                                                   /* primal 0-form */
+  double *e = w->edge;
+  for (size_t j = 0; j + 1 < n; j++) e[j] = in[j + 1] - in[j]; /* d, primal */
+  e[n - 1] = in[0] - in[n - 1];
+  star_apply(w, e); /* dual 0-form */
+  out[0] = e[0] - e[n - 1]; /* d, dual */
+  for (size_t j = 1; j < n; j++) out[j] = e[j] - e[j - 1];
+  star_apply(w, out); /* primal 0-form */
 }
 
 void gm_wave1d_free(gm_wave1d *w) {

@@ -104,7 +104,7 @@ static gm_status vi_step(gm_schrodinger *s, gm_error *err) {
   fftw_complex *pm = s->lev[0], *p0 = s->lev[1], *Hm = s->Hlev[0], *H0 = s->Hlev[1];
   for (size_t j = 0; j < n; j++) {
     s->rhs[j] = 0.5 * I * pm[j] + c * (Hm[j] + 4.0 * H0[j]);
-    s->x[j] = 2.0 * p0[j] - pm[j];
+    s->x[j] = pm[j] - 2.0 * I * s->dt * H0[j]; /* leapfrog predictor, O(Δt³) */
   }
   gm_status st = vi_solve(s, s->rhs, s->x, err);
   if (st != GM_OK) return st;
