@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 
 #include "cli/cli.h"
+#include "cli/pde_spectral.h"
 
 static const char usage[] =
     "usage: geomint pde run sine-gordon [--scheme NAME] [--n N] [--dt DT] [--T T] [--omega W]\n"
@@ -277,11 +278,16 @@ static int pde_b10(int argc, char **argv) {
 static int pde_main(int argc, char **argv) {
   if (argc >= 1 && strcmp(argv[0], "run") == 0) return pde_run(argc - 1, argv + 1);
   if (argc >= 1 && strcmp(argv[0], "b10") == 0) return pde_b10(argc - 1, argv + 1);
+  if (argc >= 1 && strcmp(argv[0], "schrodinger") == 0)
+    return cli_pde_schrodinger(argc - 1, argv + 1);
+  if (argc >= 1 && strcmp(argv[0], "spectral-star") == 0)
+    return cli_pde_spectral_star(argc - 1, argv + 1);
   if (argc >= 1 && (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) {
     fputs(usage, stdout);
+    fputs(cli_pde_spectral_usage, stdout);
     return CLI_EXIT_OK;
   }
-  cli_error("pde", "which subcommand? run or b10 (see geomint pde --help)");
+  cli_error("pde", "which subcommand? run, b10, schrodinger or spectral-star (see geomint pde --help)");
   return CLI_EXIT_USAGE;
 }
 
