@@ -287,7 +287,8 @@ static int sch_compare(size_t n, double dt, double T, const char *dir, int no_pl
   double q0 = gm_schrodinger_charge(vi), n0 = gm_schrodinger_norm(vi), next = dt;
   size_t steps = (size_t)llround(T / dt), report = steps / 10 > 0 ? steps / 10 : 1;
   for (size_t k = 1; k <= steps; k++) {
-    if (gm_schrodinger_advance(vi, 1, &err) != GM_OK || gm_schrodinger_advance(ss, 1, &err) != GM_OK ||
+    if (gm_schrodinger_advance(vi, 1, &err) != GM_OK ||
+        gm_schrodinger_advance(ss, 1, &err) != GM_OK ||
         gm_schrodinger_advance(se, ratio, &err) != GM_OK) {
       cli_error(cmd, "%s", err.message);
       rc = CLI_EXIT_FAILURE;

@@ -47,7 +47,7 @@ double gm_wave1d_symbol(gm_hodge_kind star, size_t n, double length, long m) {
   return -s * s;
 }
 
-/* apply the star to n values in place (primal 1-form → dual 0-form or dual 1-form → primal 0-form) */
+/* the star on n values in place: primal 1-form → dual 0-form, or dual 1-form → primal 0-form */
 static void star_apply(gm_wave1d *w, double *x) {
   size_t n = w->n;
   if (w->star == GM_HODGE_DIAGONAL) {

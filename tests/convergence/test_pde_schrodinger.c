@@ -42,7 +42,8 @@ Test(pde_schrodinger, invariants) {
   gm_schrodinger *vi = coherent_solver(GM_SCHRODINGER_VI, 64, 0.01, 0);
   gm_schrodinger *ss = coherent_solver(GM_SCHRODINGER_SPLIT_STEP, 64, 0.01, 0);
   gm_schrodinger *vn = coherent_solver(GM_SCHRODINGER_VI, 64, 0.01, 1);
-  double q0 = gm_schrodinger_charge(vi), n0 = gm_schrodinger_norm(ss), e0 = gm_schrodinger_energy(vi);
+  double q0 = gm_schrodinger_charge(vi), n0 = gm_schrodinger_norm(ss);
+  double e0 = gm_schrodinger_energy(vi);
   double dq = 0, dnorm_vi = 0, dnorm_ss = 0, dnorm_vn = 0, de_vi = 0, de_ss = 0;
   for (int k = 0; k < 5000; k++) {
     cr_assert_eq(gm_schrodinger_advance(vi, 1, &err), GM_OK, "%s", err.message);

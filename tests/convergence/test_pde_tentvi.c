@@ -61,7 +61,8 @@ Test(pde_tentvi, orders_breather_and_kink) {
     /* joint: Δt = Δx/2, n = 200 → 400, T = 4 */
     double a = run_error(fs[k], 200, 0.1, tw[k], 4.0), b = run_error(fs[k], 400, 0.05, tw[k], 4.0);
     /* space at fixed Δt = 0.02: n = 100 → 200 */
-    double sa = run_error(fs[k], 100, 0.02, tw[k], 4.0), sb = run_error(fs[k], 200, 0.02, tw[k], 4.0);
+    double sa = run_error(fs[k], 100, 0.02, tw[k], 4.0);
+    double sb = run_error(fs[k], 200, 0.02, tw[k], 4.0);
     double pj = log2(a / b), px = log2(sa / sb);
     cr_log_info("tent VI, %s: joint (dt = dx/2, n 200 -> 400, T 4) %.3e -> %.3e order %.3f; "
                 "space (dt 0.02, n 100 -> 200) %.3e -> %.3e order %.3f",
@@ -125,7 +126,8 @@ Test(pde_tentvi, symplectic_form_and_energy) {
     if (k >= steps - steps / 10) de_last = fmax(de_last, de);
   }
   cr_log_info("tent VI breather n 200, dt 0.1: symplectic form of the strip, relative change "
-              "%.2e over 400 steps, %.2e over 5000 (growth not analysed); strip energy over 5000 steps (T 500): max relative change "
+              "%.2e over 400 steps, %.2e over 5000 (growth not analysed); strip energy over "
+              "5000 steps (T 500): max relative change "
               "%.3e in the first tenth, %.3e in the last tenth",
               worst400, worst, de_first, de_last);
   cr_expect_leq(worst400, 1e-12, "symplectic form %.3e", worst400);
