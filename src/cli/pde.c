@@ -282,12 +282,13 @@ static int pde_main(int argc, char **argv) {
     return cli_pde_schrodinger(argc - 1, argv + 1);
   if (argc >= 1 && strcmp(argv[0], "spectral-star") == 0)
     return cli_pde_spectral_star(argc - 1, argv + 1);
+  if (argc >= 1 && strcmp(argv[0], "tent-vi") == 0) return cli_pde_tent_vi(argc - 1, argv + 1);
   if (argc >= 1 && (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) {
     fputs(usage, stdout);
     fputs(cli_pde_spectral_usage, stdout);
     return CLI_EXIT_OK;
   }
-  cli_error("pde", "which subcommand? run, b10, schrodinger or spectral-star (see geomint pde --help)");
+  cli_error("pde", "which subcommand? run, b10, schrodinger, spectral-star or tent-vi (see --help)");
   return CLI_EXIT_USAGE;
 }
 

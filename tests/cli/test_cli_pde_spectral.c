@@ -33,13 +33,29 @@ Test(cli_pde_spectral, schrodinger_compare) {
   run_output_free(&r);
 }
 
+Test(cli_pde_spectral, tent_vi_kink) {
+  run_output r = run_cli("pde tent-vi --initial kink --n 400 --dt 0.05 --T 4 --out k.csv");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  const char *e = strstr(r.out, "max |u - exact| ");
+  cr_assert_not_null(e, "%s", r.out);
+  double err = atof(e + strlen("max |u - exact| "));
+  cr_expect(err > 1e-4 && err < 4e-3, "kink error %g (the test suite measured 2.1e-3)", err);
+  char *csv = read_file(path_in_tmp("k.csv"));
+  cr_assert_not_null(csv);
+  cr_expect_eq(count_lines(csv), 401);
+  free(csv);
+  run_output_free(&r);
+}
+
 Test(cli_pde_spectral, bad_input_exits_2) {
   const char *cases[] = {"pde schrodinger compare --n 63 --no-plot",
                          "pde schrodinger compare --dt 0.05 --no-plot", /* VI stability bound */
                          "pde schrodinger compare --dt -1 --no-plot", "pde schrodinger",
                          "pde schrodinger eigenvalues --no-plot",
                          "pde spectral-star --courant 0.9 --no-plot",
-                         "pde spectral-star --n 31 --no-plot"};
+                         "pde spectral-star --n 31 --no-plot",
+                         "pde tent-vi --dt 0.5", "pde tent-vi --initial soliton",
+                         "pde tent-vi --param 1.5"};
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     run_output r = run_cli(cases[i]);
     cr_expect_eq(r.status, 2, "%s: status %d, %s", cases[i], r.status, r.err);
