@@ -288,7 +288,8 @@ static int pde_main(int argc, char **argv) {
     fputs(cli_pde_spectral_usage, stdout);
     return CLI_EXIT_OK;
   }
-  cli_error("pde", "which subcommand? run, b10, schrodinger, spectral-star or tent-vi (see --help)");
+  cli_error("pde",
+            "which subcommand? run, b10, schrodinger, spectral-star or tent-vi (see --help)");
   return CLI_EXIT_USAGE;
 }
 

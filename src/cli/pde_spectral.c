@@ -1,7 +1,7 @@
-/* geomint pde schrodinger | spectral-star | tent-vi: the pseudospectral Schrödinger VI against Strang
- * split-step Fourier (eigenvalues; a coherent state at equal cost) and the spectral Hodge star's
- * dispersion against the diagonal star's (each writes .dat files and one gnuplot figure); the
- * tent-function VI of seed 001 §5.1 on sine-Gordon. */
+/* geomint pde schrodinger | spectral-star | tent-vi: the pseudospectral Schrödinger VI against
+ * Strang split-step Fourier (eigenvalues; a coherent state at equal cost), the spectral Hodge
+ * star's dispersion against the diagonal star's (each writes .dat files and one gnuplot
+ * figure), and the tent-function VI of seed 001 §5.1 on sine-Gordon. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
