@@ -160,7 +160,9 @@ gm_status gm_wave1d_advance(gm_wave1d *w, size_t n_steps, gm_error *err) {
     gm_wave1d_laplacian(w, w->u, w->lu);
     for (size_t j = 0; j < n; j++) w->v[j] += 0.5 * dt * w->lu[j];
     w->steps++;
-    if (!isfinite(w->u[0]) || !isfinite(w->v[n / 2]))
+    double sum = 0.0; /* NaN or ∞ anywhere makes the sum non-finite */
+    for (size_t j = 0; j < n; j++) sum += (w->u[j] + w->v[j]) * 0.0;
+    if (!isfinite(sum))
       return gm_error_set(err, GM_EDOMAIN, "wave1d: non-finite value at step %zu", w->steps);
   }
   return GM_OK;

@@ -86,3 +86,27 @@ Test(pde_spectral, wave1d_bad_input) {
   gm_wave1d_free(NULL);
   gm_tentvi_free(NULL);
 }
+
+static double quartic(double u, const void *c) {
+  (void)c;
+  return 1e3 * u * u * u * u;
+}
+static double dquartic(double u, const void *c) {
+  (void)c;
+  return 4e3 * u * u * u;
+}
+
+Test(pde_spectral, tentvi_blow_up_is_an_error) {
+  /* V = 1e3 u⁴ from u = 10 with Δt = Δx = 0.1: the explicit force overflows within steps */
+  double u[16];
+  for (int i = 0; i < 16; i++) u[i] = 10.0 + (i % 2);
+  gm_tentvi *m = NULL;
+  gm_error err = {{0}};
+  cr_assert_eq(gm_tentvi_create(16, 0.0, 0.1, 0.0, 0.1, quartic, dquartic, NULL, NULL, u, u, &m,
+                                &err),
+               GM_OK, "%s", err.message);
+  gm_status st = gm_tentvi_advance(m, 1000, &err);
+  cr_expect_eq(st, GM_EDOMAIN, "status %d", (int)st);
+  cr_expect(strstr(err.message, "non-finite value at step") != NULL, "%s", err.message);
+  gm_tentvi_free(m);
+}
