@@ -16,6 +16,7 @@
  * ω = (2/h) sin(κh/2). The stars are applied in Fourier space (r2c/c2r plans made at create);
  * d stays a difference in real space. */
 #include <complex.h>
+#include <limits.h>
 #include <fftw3.h>
 #include <math.h>
 #include <stdlib.h>
@@ -97,8 +98,9 @@ gm_status gm_wave1d_create(size_t n, double length, gm_hodge_kind star, double d
   if (out == NULL || u0 == NULL || v0 == NULL)
     return gm_error_set(err, GM_EINVAL, "wave1d: NULL argument");
   *out = NULL;
-  if (n < 4 || n % 2 != 0)
-    return gm_error_set(err, GM_EINVAL, "wave1d: n = %zu must be even and >= 4", n);
+  if (n < 4 || n % 2 != 0 || n > (size_t)INT_MAX) /* FFTW takes int sizes */
+    return gm_error_set(err, GM_EINVAL, "wave1d: n = %zu must be even, >= 4 and <= %d", n,
+                        INT_MAX);
   if (!(isfinite(length) && length > 0.0))
     return gm_error_set(err, GM_EINVAL, "wave1d: the period must be finite and > 0");
   if (star != GM_HODGE_DIAGONAL && star != GM_HODGE_SPECTRAL)

@@ -13,6 +13,7 @@
  *
  * Split-step: Strang, e^{−iVΔt/2} F⁻¹ e^{−ik²Δt/2} F e^{−iVΔt/2}. */
 #include <complex.h>
+#include <limits.h>
 #include <fftw3.h>
 #include <math.h>
 #include <stdlib.h>
@@ -199,8 +200,9 @@ gm_status gm_schrodinger_create(size_t n, double x0, double length, const double
   if (out == NULL || V == NULL || psi0 == NULL || options == NULL)
     return gm_error_set(err, GM_EINVAL, "schrodinger: NULL argument");
   *out = NULL;
-  if (n < 4 || n % 2 != 0)
-    return gm_error_set(err, GM_EINVAL, "schrodinger: n = %zu must be even and >= 4", n);
+  if (n < 4 || n % 2 != 0 || n > (size_t)INT_MAX) /* FFTW takes int sizes */
+    return gm_error_set(err, GM_EINVAL, "schrodinger: n = %zu must be even, >= 4 and <= %d", n,
+                        INT_MAX);
   if (!(isfinite(length) && length > 0.0) || !isfinite(x0))
     return gm_error_set(err, GM_EINVAL, "schrodinger: the period must be finite and > 0");
   double dt = options->dt;
