@@ -8,7 +8,9 @@
  *        u_tt − u_xx + V'(u) = 0.
  * Plan/execute (DESIGN §5a): _create checks, allocates and makes every FFTW plan; _advance never
  * allocates. Pointer parameters are borrowed unless a comment says copied or owned. Complex
- * arrays are interleaved (re, im) pairs. Nothing here prints. */
+ * arrays are interleaved (re, im) pairs. Nothing here prints.
+ * Threads: FFTW's planner keeps global state and is not thread-safe, so create and free these
+ * solvers from one thread at a time; advancing distinct solvers concurrently is safe. */
 #ifndef GEOMINT_PDE_SPECTRAL_H
 #define GEOMINT_PDE_SPECTRAL_H
 
