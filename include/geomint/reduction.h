@@ -260,6 +260,37 @@ gm_status gm_dconn_holonomy(const gm_discrete_connection *c, size_t n_points, co
 gm_status gm_dconn_defect(const gm_discrete_connection *a, const gm_discrete_connection *b,
                           const double *x0, const double *x1, double *defect, gm_error *err);
 
+/* ---- geometric phases with closed forms (docs/reduction.md, "Phases") ------------------------
+ *
+ * The Levi-Civita connection of the unit sphere as a principal SO(2) connection over the upper
+ * hemisphere, in the chart x = (X, Y) (the point (X, Y, √(1 − X² − Y²))) with the frame
+ * (e_ϑ, e_φ): a tangent vector at angle β from e_ϑ is parallel iff β̇ = −cos ϑ φ̇, so
+ * A(x) = cos ϑ dφ = √(1 − ρ²)(X dY − Y dX)/ρ², ρ² = X² + Y² (1 × 2 row; singular at the pole,
+ * where the frame is). A callback for gm_discrete_connection.connection (ctx unused). Returns −1
+ * off the open hemisphere or at the pole. The holonomy of the latitude circle at colatitude α
+ * (counterclockwise about the north pole) is −2π cos α: relative to the local (north, east)
+ * frame a Foucault pendulum's plane turns by 2π cos α clockwise per sidereal day — 2π sin(latitude)
+ * — and relative to a parallel-transported frame the loop's holonomy is 2π(1 − cos α) mod 2π, the
+ * enclosed area (Gauss–Bonnet). */
+int gm_sphere_levi_civita(void *ctx, const double *x, double *a);
+
+/* Montgomery's rigid-body phase (R. Montgomery, "How much does the rigid body rotate?", Am. J.
+ * Phys. 59 (1991) 394): for the free rigid body with principal moments `inertia` and initial body
+ * momentum pi, Π(t) is periodic with period T (gm_free_rigid_body_period, closed form), and after
+ * one period R(T) = exp(Δθ m̂) R(0), m = RΠ the spatial momentum, with
+ *   Δθ = 2E T/‖m‖ − Λ  (mod 2π),
+ * E the kinetic energy and Λ the solid angle of the cone spanned by Π(t) on its side of the
+ * encircled principal axis, oriented by the motion (Λ > 0 when Π circles that axis
+ * counterclockwise seen from its tip). period, dynamic = 2ET/‖m‖ and solid_angle = Λ are
+ * written; Λ = ∮(1 − cos ϑ) dφ about the encircled axis is a quadrature along Π(t) from Euler's
+ * equations (classical RK4 with `steps` steps per period, 20000 when 0; error ~ (T/steps)⁴).
+ * GM_EINVAL for a separatrix, a steady spin or non-distinct moments. */
+gm_status gm_rigid_body_phase(const double inertia[3], const double pi[3], size_t steps,
+                              double *period, double *dynamic, double *solid_angle, gm_error *err);
+
+/* The angle of r1 r0ᵀ about the unit axis u, in (−π, π] (r1 r0ᵀ must be a rotation about u). */
+double gm_so3_angle_about(const double r0[9], const double r1[9], const double u[3]);
+
 /* ---- the two systems of seed 001 §2.9–2.10 ------------------------------------------------ */
 
 /* Satellite about an oblate planet in cylindrical coordinates θ; x = (r, z): M = diag(r², 1, 1),
