@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include "cli/cli.h"
+#include "cli/reduction_phases.h"
 
 static const char usage[] =
     "usage: geomint reduction EXPERIMENT [--out DIR] [--no-plot] [--dt H] [--t-end T]\n\n"
@@ -21,6 +22,11 @@ static const char usage[] =
     "                   RK4 on the unreduced system at dt/4; dt = 0.01, t = 0..20 (figures\n"
     "                   2.7-2.9); m1 = m2 = 1, l1 = l2 = 1, g = 9.81, mu = 1; also the\n"
     "                   constrained R^3 x R^3 form (vi-galerkin-gauss-2) from the same state\n"
+    "  phases           geometric phases against closed forms (seed 001 ch. 4): Foucault's\n"
+    "                   pendulum and a spherical cap (Levi-Civita holonomy of the sphere),\n"
+    "                   Montgomery's rigid-body phase (lgvi, lgvi-galerkin-2), a shape loop of\n"
+    "                   the double spherical pendulum at mu = 0, and the tet-mesh Levi-Civita\n"
+    "                   holonomy against the deficit angle; prints the table (no files)\n"
     "Writes DIR/*.csv and draws DIR/*.png with gnuplot; prints the measured numbers.\n\n"
     "options:\n"
     "  --out DIR   output directory, created if missing (default reduction-output)\n"
@@ -541,15 +547,17 @@ static int routh_main(int argc, char **argv) {
   }
   if (rc != CLI_EXIT_OK) return rc;
   if (npos != 1) {
-    cli_error("reduction", "expected one experiment: j2-satellite or double-spherical-pendulum");
+    cli_error("reduction", "expected one experiment: j2-satellite, double-spherical-pendulum or phases");
     return CLI_EXIT_USAGE;
   }
   if ((options[4].seen && cli_check_positive("reduction", "--dt", dt)) ||
       (options[5].seen && cli_check_positive("reduction", "--t-end", t_end)))
     return CLI_EXIT_USAGE;
+  if (strcmp(pos[0], "phases") == 0) return cli_reduction_phases();
   const int j2 = strcmp(pos[0], "j2-satellite") == 0;
   if (!j2 && strcmp(pos[0], "double-spherical-pendulum") != 0) {
-    cli_error("reduction", "unknown experiment '%s'; expected j2-satellite or double-spherical-pendulum",
+    cli_error("reduction",
+              "unknown experiment '%s'; expected j2-satellite, double-spherical-pendulum or phases",
               pos[0]);
     return CLI_EXIT_USAGE;
   }
