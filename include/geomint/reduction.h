@@ -183,8 +183,10 @@ gm_status gm_routh_holonomy(gm_routh_discrete *d, double h, size_t n_points, con
  *                        segment, U(1)⁻¹ for U̇ = −U A(x(t))Δx, U(0) = e, by classical RK4 with
  *                        `substeps` steps (64 when 0) — an integrator independent of the rules
  *                        above, so the order test checks their signs too (seed 001 Ex. 4.1 with
- *                        the flat metric on the chart; see docs/reduction.md for why not
- *                        exp(𝒜(loḡ(q0, q1))), which is first order for nonabelian G);
+ *                        the flat metric on the chart. exp(𝒜(loḡ(q0, q1))) with the product
+ *                        metric (bi-invariant on G, flat on the chart) is not used: at
+ *                        q0 = (x0, e), q1 = (x1, e) it is exp(A(x0)Δx), the LEFT rule, first
+ *                        order against the transport, and for nonabelian G not of local form);
  *   GM_DCONN_MECHANICAL  the discrete mechanical connection: A_d = e iff J_d = 0 (seed 001 §4.4).
  *                        momentum(ctx, x0, x1, w, j) gives the discrete momentum J_d of the pair
  *                        ((x0, e), (x1, exp w)) (dim values, any frame: only its zero matters);
