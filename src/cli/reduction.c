@@ -452,6 +452,7 @@ static int run_dsp(const char *dir, int no_plot, double h, double t_end) {
   fprintf(f, "t,r1,r2,phi,x2,y2,dE_rsprk,dE_sprk,dE_rk4,rel_r1,rel_r2,rel_phi,rel_E,r1_rk4,r2_rk4,phi_rk4,min_r\n");
   const size_t n = (size_t)llround(t_end / h);
   double worst[4] = {0, 0, 0, 0}, emax_a = 0, emax_rk = 0, emax_a_half = 0, r_min = INFINITY;
+  double tenth[2][2] = {{0, 0}, {0, 0}}; /* max |dE| in the first and last tenth: RSPRK, RK4 */
   int rc = 0;
   for (size_t i = 0; i <= n; ++i) {
     if (i > 0) {
@@ -479,6 +480,8 @@ static int run_dsp(const char *dir, int no_plot, double h, double t_end) {
     emax_a = fmax(emax_a, fabs(da));
     if ((double)i * h <= 0.5 * t_end) emax_a_half = fmax(emax_a_half, fabs(da));
     emax_rk = fmax(emax_rk, fabs(dk));
+    if (i > 0 && (i - 1) * 10 < n) tenth[0][0] = fmax(tenth[0][0], fabs(da)), tenth[1][0] = fmax(tenth[1][0], fabs(dk));
+    if (i > 0 && (i - 1) * 10 >= 9 * n) tenth[0][1] = fmax(tenth[0][1], fabs(da)), tenth[1][1] = fmax(tenth[1][1], fabs(dk));
     r_min = fmin(r_min, fmin(x[0], x[1]));
     const double th2 = th + x[2];
     fprintf(f, "%.8g,%.12g,%.12g,%.12g,%.10g,%.10g,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.12g,%.12g,%.12g,%.6g\n",
@@ -497,6 +500,9 @@ static int run_dsp(const char *dir, int no_plot, double h, double t_end) {
          dsp_x0[4], dsp_x0[5], h, t_end);
   printf("  max |E - E0|/|E0|: RSPRK (vi-galerkin-gauss-2) %.3g (first half %.3g), RK4 at dt/4 %.3g\n",
          emax_a, emax_a_half, emax_rk);
+  printf("  max |E - E0|/|E0| in the first / last tenth of the run: RSPRK %.3g / %.3g, RK4 at dt/4 "
+         "%.3g / %.3g\n",
+         tenth[0][0], tenth[0][1], tenth[1][0], tenth[1][1]);
   printf("  max relative RSPRK - classical SPRK: r1 %.3g, r2 %.3g, phi %.3g, E %.3g\n", worst[0],
          worst[1], worst[2], worst[3]);
   printf("  smallest r_i along the run: %.4f\n", r_min);
