@@ -83,6 +83,26 @@ Test(dec_levi_civita_3d, flat_jittered_cube_has_no_curvature) {
   gm_complex_free(cx);
 }
 
+/* the gmsh cube of tests/data (unstructured, flat) */
+Test(dec_levi_civita_3d, flat_gmsh_cube_has_no_curvature) {
+  char path[1024];
+  snprintf(path, sizeof path, "%s/tests/data/cube_v41.msh", GM_SOURCE_DIR);
+  gm_mesh *mesh = NULL;
+  gm_complex *cx = NULL;
+  gm_error err;
+  cr_assert_eq(gm_mesh_read(path, &mesh, &err), GM_OK, "%s", err.message);
+  cr_assert_eq(gm_mesh_complex(mesh, &cx, &err), GM_OK, "%s", err.message);
+  cr_assert_eq(gm_complex_dim(cx), 3);
+  result r = check(cx);
+  cr_log_info("gmsh cube (%zu tets, %zu interior edges): max |angle| %.3g, max |deficit| %.3g",
+              gm_complex_count(cx, 3), r.interior, r.worst_angle, r.worst_deficit);
+  cr_expect_gt(r.interior, 0);
+  cr_expect_lt(r.worst_angle, 1e-12);
+  cr_expect_lt(r.worst_deficit, 1e-12);
+  gm_complex_free(cx);
+  gm_mesh_free(mesh);
+}
+
 /* m wedges about the edge (c0, c1) = ((0,0,0,0), (0,0,0,1)); ring points at depth −h, radius 1:
  * the product of a 2-D cone of total angle m∠ with an interval, embedded in R⁴. */
 Test(dec_levi_civita_3d, cone_singularity_deficit) {
