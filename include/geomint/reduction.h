@@ -218,7 +218,8 @@ double gm_group_distance(gm_group_kind g, const double *a, const double *b);
 
 typedef struct gm_discrete_connection {
   gm_group_kind group;
-  size_t n;           /* shape dimension, 1..GM_DCONN_MAX_SHAPE */
+  size_t n;           /* shape dimension ≤ GM_DCONN_MAX_SHAPE; 0: the pure group case
+                       * A_d(g0, g1) = g1 g0⁻¹ (no callback; shape arguments may be NULL) */
   gm_dconn_rule rule;
   /* GM_DCONN_CALLBACK: A(x0, x1) ∈ G (gm_group_size values). Return 0 on success. */
   int (*local)(void *ctx, const double *x0, const double *x1, double *a);

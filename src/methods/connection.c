@@ -67,10 +67,11 @@ double gm_group_distance(gm_group_kind g, const double *a, const double *b) {
 /* ---- the local form A(x0, x1) by each rule ------------------------------------------------ */
 
 static gm_status check(const gm_discrete_connection *c, gm_error *err) {
-  if (c == NULL || gm_group_size(c->group) == 0 || c->n == 0 || c->n > GM_DCONN_MAX_SHAPE)
+  if (c == NULL || gm_group_size(c->group) == 0 || c->n > GM_DCONN_MAX_SHAPE)
     return gm_error_set(err, GM_EINVAL,
-                        "discrete connection: need a group (SO(2) or SO(3)) and 1 <= n <= %d",
+                        "discrete connection: need a group (SO(2) or SO(3)) and n <= %d",
                         GM_DCONN_MAX_SHAPE);
+  if (c->n == 0) return GM_OK; /* the pure group case: A = e, no callback */
   int ok = 0;
   switch (c->rule) {
   case GM_DCONN_CALLBACK: ok = c->local != NULL; break;
@@ -206,10 +207,14 @@ gm_status gm_dconn_local(const gm_discrete_connection *c, const double *x0, cons
                          double *a, gm_error *err) {
   gm_status st = check(c, err);
   if (st != GM_OK) return st;
-  if (x0 == NULL || x1 == NULL || a == NULL)
+  if ((c->n > 0 && (x0 == NULL || x1 == NULL)) || a == NULL)
     return gm_error_set(err, GM_EINVAL, "discrete connection: NULL argument");
   const size_t n = c->n;
   double dx[GM_DCONN_MAX_SHAPE], w[3];
+  if (n == 0) {
+    gm_group_exp(c->group, (const double[3]){0, 0, 0}, a);
+    return GM_OK;
+  }
   for (size_t i = 0; i < n; ++i) dx[i] = x1[i] - x0[i];
   switch (c->rule) {
   case GM_DCONN_CALLBACK:
@@ -303,8 +308,8 @@ gm_status gm_dconn_compose(const gm_discrete_connection *c, const double *x0, co
                            const double *y1, const double *h1, double *g_out, gm_error *err) {
   gm_status st = check(c, err);
   if (st != GM_OK) return st;
-  if (x0 == NULL || g0 == NULL || x1 == NULL || g1 == NULL || y0 == NULL || h0 == NULL ||
-      y1 == NULL || h1 == NULL || g_out == NULL)
+  if ((c->n > 0 && (x0 == NULL || x1 == NULL || y0 == NULL || y1 == NULL)) || g0 == NULL ||
+      g1 == NULL || h0 == NULL || h1 == NULL || g_out == NULL)
     return gm_error_set(err, GM_EINVAL, "extended composition: NULL argument");
   double s, d = gap(x1, y0, c->n, &s);
   if (!(d <= 1e-12 * (1.0 + s)))

@@ -72,6 +72,14 @@ Test(connection, local_form_properties_and_decomposition) {
   cr_expect_lt(dist(tmp, e), 1e-14, "A_d(hor) = e: %.3g", dist(tmp, e));
   cr_assert_eq(gm_dconn_eval(&c, x0, g0, x0, gver, tmp, NULL), GM_OK);
   cr_expect_lt(dist(tmp, ad), 1e-14, "A_d(ver) = A_d: %.3g", dist(tmp, ad));
+  /* the pure group case (n = 0): A_d(g0, g1) = g1 g0⁻¹ */
+  gm_discrete_connection pure;
+  memset(&pure, 0, sizeof pure);
+  pure.group = GM_GROUP_SO3;
+  cr_assert_eq(gm_dconn_eval(&pure, NULL, g0, NULL, g1, ad, NULL), GM_OK);
+  gm_group_inv(GM_GROUP_SO3, g0, tmp);
+  gm_group_mul(GM_GROUP_SO3, g1, tmp, want);
+  cr_expect_lt(dist(ad, want), 1e-15, "pure group case %.3g", dist(ad, want));
   /* continuous limit: log A_d(q0, q(t))/t → ġg⁻¹ + Ad_g A(x)ẋ, error O(t) */
   const double xd[2] = {0.7, -0.4}, wd[3] = {0.2, 0.1, -0.3};
   double prev = 0.0;
