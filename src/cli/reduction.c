@@ -26,7 +26,8 @@ static const char usage[] =
     "                   pendulum and a spherical cap (Levi-Civita holonomy of the sphere),\n"
     "                   Montgomery's rigid-body phase (lgvi, lgvi-galerkin-2), a shape loop of\n"
     "                   the double spherical pendulum at mu = 0, and the tet-mesh Levi-Civita\n"
-    "                   holonomy against the deficit angle; prints the table (no files)\n"
+    "                   holonomy against the deficit angle; prints the table; with --out also\n"
+    "                   DIR/phases-convergence.csv and .png (errors vs points / steps)\n"
     "Writes DIR/*.csv and draws DIR/*.png with gnuplot; prints the measured numbers.\n\n"
     "options:\n"
     "  --out DIR   output directory, created if missing (default reduction-output)\n"
@@ -559,7 +560,29 @@ static int routh_main(int argc, char **argv) {
   if ((options[4].seen && cli_check_positive("reduction", "--dt", dt)) ||
       (options[5].seen && cli_check_positive("reduction", "--t-end", t_end)))
     return CLI_EXIT_USAGE;
-  if (strcmp(pos[0], "phases") == 0) return cli_reduction_phases();
+  if (strcmp(pos[0], "phases") == 0) {
+    rc = cli_reduction_phases();
+    if (rc != CLI_EXIT_OK || !options[0].seen) return rc; /* files only with --out */
+    if (make_directory(dir)) return CLI_EXIT_FAILURE;
+    FILE *f = open_out(dir, "phases-convergence.csv");
+    if (f == NULL) return CLI_EXIT_FAILURE;
+    rc = cli_reduction_phases_convergence(f);
+    if (fclose(f) != 0 && rc == CLI_EXIT_OK) rc = CLI_EXIT_FAILURE;
+    if (rc != CLI_EXIT_OK || no_plot) return rc;
+    return plot(dir, "phases-convergence.png",
+                "set logscale xy\nset format y '10^{%L}'\nset xlabel 'points per loop / steps per period'\n"
+                "set ylabel 'phase error'\nset key outside right\nset grid\n"
+                "set title 'Geometric phases: error vs closed form (solid) and vs the polygon exact holonomy (dashed)'\n"
+                "plot 'phases-convergence.csv' every ::1 using 1:2 w lp lw 2 t 'Foucault, midpoint conn.', "
+                "'' every ::1 using 1:3 w lp lw 2 t 'Foucault, Gauss-2 conn.', "
+                "'' every ::1 using 1:4 w lp dt 2 lw 2 t 'Foucault, Gauss-2 vs polygon', "
+                "'' every ::1 using 1:5 w lp dt 2 lw 2 t 'DSP loop, midpoint vs polygon', "
+                "'' every ::1 using 1:6 w lp dt 2 lw 2 t 'DSP loop, Gauss-2 vs polygon', "
+                "'' every ::1 using 1:7 w lp lw 2 t 'rigid body, lgvi', "
+                "'' every ::1 using 1:8 w lp lw 2 t 'rigid body, lgvi-galerkin-2', "
+                "'' every ::1 using 1:(2e-1/$1**2) w l lc rgb '#999999' t 'N^{-2}', "
+                "'' every ::1 using 1:(1e0/$1**4) w l lc rgb '#555555' t 'N^{-4}'");
+  }
   const int j2 = strcmp(pos[0], "j2-satellite") == 0;
   if (!j2 && strcmp(pos[0], "double-spherical-pendulum") != 0) {
     cli_error("reduction",

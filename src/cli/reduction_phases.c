@@ -226,3 +226,72 @@ int cli_reduction_phases(void) {
   }
   return rc;
 }
+
+/* error of one discrete connection's holonomy vs a closed form (exact == NULL) or vs the
+ * polygon's exact holonomy */
+static double loop_error(size_t n, int (*conn)(void *, const double *, double *), loop_fn f,
+                         gm_dconn_rule rule, double closed, int vs_polygon, size_t N) {
+  gm_discrete_connection c;
+  memset(&c, 0, sizeof c);
+  c.group = GM_GROUP_SO2;
+  c.n = n;
+  c.rule = rule;
+  c.connection = conn;
+  gm_discrete_connection ex = c;
+  ex.rule = GM_DCONN_TRANSPORT;
+  ex.substeps = 16;
+  double *pts = malloc(3 * (N + 1) * sizeof *pts), hol = NAN, ref = closed;
+  if (pts == NULL) return NAN;
+  f(N, pts);
+  if (gm_dconn_holonomy(&c, N + 1, pts, &hol, NULL) != GM_OK ||
+      (vs_polygon && gm_dconn_holonomy(&ex, N + 1, pts, &ref, NULL) != GM_OK))
+    hol = NAN;
+  free(pts);
+  return fabs(hol - ref);
+}
+
+static double rigid_error(const char *row, size_t n, double period, double closed) {
+  const double pi0[3] = {0.3, 0.2, 1.0};
+  gm_model *model = NULL;
+  gm_integrator *it = NULL;
+  double t0, y0[12], m[3], err = NAN;
+  if (gm_model_create("rigid-body", &model) == GM_OK && gm_model_set(model, "Pi1", pi0[0]) == GM_OK &&
+      gm_model_set(model, "Pi2", pi0[1]) == GM_OK && gm_model_set(model, "Pi3", pi0[2]) == GM_OK &&
+      gm_model_build(model) == GM_OK) {
+    gm_model_initial_state(model, &t0, y0);
+    if (gm_integrator_create(gm_method_find(row), gm_model_problem(model), &it, NULL) == GM_OK &&
+        gm_integrator_set_state(it, t0, y0) == GM_OK &&
+        gm_integrator_run(it, n, period / (double)n) == GM_OK) {
+      gm_mat3_vec(y0, y0 + 9, m);
+      err = fabs(wrap(gm_so3_angle_about(y0, gm_integrator_state(it), m) - closed));
+    }
+  }
+  gm_integrator_free(it);
+  gm_model_free(model);
+  return err;
+}
+
+int cli_reduction_phases_convergence(FILE *f) {
+  alpha_paris = (90.0 - 48.8462) * PI / 180.0;
+  gm_routh_double_spherical_pendulum(&dspp, &dsp_sys);
+  const double inertia[3] = {1.0, 2.0, 3.0}, pi0[3] = {0.3, 0.2, 1.0};
+  double period, dyn, lambda;
+  if (gm_rigid_body_phase(inertia, pi0, 0, &period, &dyn, &lambda, NULL) != GM_OK) return CLI_EXIT_FAILURE;
+  const double rb = wrap(dyn - lambda), fc = -2.0 * PI * cos(alpha_paris);
+  fprintf(f, "N,foucault_midpoint,foucault_gauss2,foucault_gauss2_vs_polygon,dsp_midpoint_vs_polygon,"
+             "dsp_gauss2_vs_polygon,rigid_lgvi,rigid_lgvi_galerkin2\n");
+  for (size_t N = 16; N <= 512; N *= 2) {
+    const double v[7] = {
+        loop_error(2, gm_sphere_levi_civita, latitude, GM_DCONN_MIDPOINT, fc, 0, N),
+        loop_error(2, gm_sphere_levi_civita, latitude, GM_DCONN_MAGNUS4, fc, 0, N),
+        loop_error(2, gm_sphere_levi_civita, latitude, GM_DCONN_MAGNUS4, fc, 1, N),
+        loop_error(3, dsp_connection, dsp_loop, GM_DCONN_MIDPOINT, 0, 1, N),
+        loop_error(3, dsp_connection, dsp_loop, GM_DCONN_MAGNUS4, 0, 1, N),
+        rigid_error("lgvi", N, period, rb), rigid_error("lgvi-galerkin-2", N, period, rb)};
+    fprintf(f, "%zu", N);
+    for (int k = 0; k < 7; ++k) fprintf(f, ",%.6e", v[k]);
+    fprintf(f, "\n");
+  }
+  return CLI_EXIT_OK;
+}
+

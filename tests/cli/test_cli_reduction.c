@@ -76,4 +76,11 @@ Test(reduction, phases_table) {
     cr_expect(e1 < 1e-12 && fabs(got - closed) < 1e-12, "%s", q);
   }
   run_output_free(&r);
+  r = run_cli("reduction phases --no-plot --out %s", tmpdir);
+  cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+  char *csv = read_file(path_in_tmp("phases-convergence.csv"));
+  cr_assert_not_null(csv);
+  cr_expect_eq(count_lines(csv), 7); /* header + N = 16 .. 512 */
+  free(csv);
+  run_output_free(&r);
 }
