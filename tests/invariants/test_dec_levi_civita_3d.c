@@ -195,6 +195,28 @@ Test(dec_levi_civita_3d, meshes_of_the_three_sphere) {
   cr_expect(fabs(r.worst_deficit - d16) < 1e-13);
   cr_expect_lt(r.worst_diff, 1e-13);
   gm_complex_free(cx);
+  /* the same with perturbed vertices: a closed piecewise-flat 3-manifold whose 24 deficits differ */
+  unsigned seed = 777u;
+  for (int i = 0; i < 32; ++i) {
+    seed = seed * 1103515245u + 12345u;
+    x16[i] += 0.15 * ((double)(seed >> 8) / 16777216.0 - 0.5);
+  }
+  cr_assert_eq(gm_complex_create(4, 8, x16, 3, 16, t16, &cx, &err), GM_OK, "%s", err.message);
+  {
+    const size_t ne = gm_complex_count(cx, 1), nf = gm_complex_count(cx, 2);
+    double R[9 * 64], ang[64], def[64], lo = INFINITY, hi = -INFINITY, worst = 0.0;
+    cr_assert(ne <= 64 && nf <= 64);
+    cr_assert_eq(gm_dec_levi_civita_3d(cx, R), GM_OK);
+    cr_assert_eq(gm_dec_curvature_3d(cx, R, NULL, ang, def, &err), GM_OK, "%s", err.message);
+    for (size_t e = 0; e < ne; ++e) {
+      lo = fmin(lo, def[e]), hi = fmax(hi, def[e]);
+      worst = fmax(worst, fabs(wrap(ang[e] - def[e])));
+    }
+    cr_log_info("perturbed 16-cell: deficits from %.4f to %.4f, max |angle - deficit| %.3g", lo, hi, worst);
+    cr_expect_gt(hi - lo, 0.05, "the deficits differ");
+    cr_expect_lt(worst, 1e-13);
+  }
+  gm_complex_free(cx);
   /* bad input */
   cr_expect_eq(gm_dec_levi_civita_3d(NULL, NULL), GM_EINVAL);
 }
