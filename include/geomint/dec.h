@@ -286,6 +286,30 @@ gm_status gm_dec_angle_deficit(const gm_complex *cx, double *deficit);
  * modulo 2π. Cost: one pass over the triangles. GM_EINVAL for a boundary vertex. */
 gm_status gm_dec_holonomy(const gm_complex *cx, size_t v, double *angle);
 
+/* ---- discrete Levi-Civita connection of tetrahedral meshes (seed 001 §4, notes §1F; seed 000
+ * §4.2.2) --------------------------------------------------------------------------------------
+ * For dim == 3 and any N >= 3 (N == 4: a piecewise-flat mesh of a curved 3-manifold, e.g. on S³).
+ * Each tet T gets an orthonormal frame: Gram–Schmidt of v1 − v0, v2 − v0, v3 − v0 (ascending
+ * vertices) in R^N, the third axis multiplied by the orientation sign of T, so every frame has
+ * the complex's orientation. The connection is an SO(3)-valued dual 1-form: on each interior
+ * triangle f with cofaces (T0, T1) (gm_complex_face_cofaces), the rotation R_f = F₁ F₀ᵀ that maps
+ * T0's frame coordinates to T1's by gluing f isometrically (F_i: the frame of f's ascending
+ * vertices (e1 along the first edge, e2 in f, e3 = e1 × e2) in T_i's coordinates); R_f maps the
+ * normal of f to itself, i.e. n0 ↦ n1 with the identity on f's plane, the seed's definition
+ * (notes §1F). transport: 9 values (row-major) per triangle, the identity on boundary triangles.
+ * GM_EINVAL unless dim == 3; GM_EDOMAIN for a degenerate tet. */
+gm_status gm_dec_levi_civita_3d(const gm_complex *cx, double *transport);
+/* Curvature on the dual faces: for every edge e, the holonomy of the transport around the dual
+ * cycle of e (the ring of tets about e, starting at the lowest-numbered tet containing e and
+ * turning counterclockwise about e's direction v_a → v_b, a < b, in that tet's frame): a
+ * rotation about e by *angle in (−π, π] (9 values per edge in holonomy, the angle per edge in
+ * angle; either may be NULL). deficit (may be NULL) gets 2π − Σ dihedral angles about interior
+ * edges and π − Σ about boundary edges; angle and holonomy are 0 and I on boundary edges. The
+ * discrete Gauss–Bonnet statement tested is angle = deficit (mod 2π): 0 to round-off on a flat
+ * mesh of R³, the deficit on a cone singularity or a mesh of S³. Allocates the edge-to-tet map. */
+gm_status gm_dec_curvature_3d(const gm_complex *cx, const double *transport, double *holonomy,
+                              double *angle, double *deficit, gm_error *err);
+
 
 /* ---- Hodge decomposition ------------------------------------------------------------------ */
 

@@ -10,7 +10,8 @@
  *   R̂^μ(x, ẋ) = ½ ẋᵀK(x)ẋ − V_μ(x),  K = M_xx − BᵀA,  V_μ = V + ½ μᵀ𝕀⁻¹μ (amended potential),
  * the magnetic 2-form β_μ = d(μA), β_ij = μ_a(∂_i A^a_j − ∂_j A^a_i), the classical Routhian
  * R̂_c = R̂^μ + μA(x)ẋ (seed 001 eq. 2.7.5) and the reduced momentum s = K ẋ = p_x − μA(x).
- * Nonabelian groups are not handled here. */
+ * Nonabelian groups are not handled by the Routh part; the discrete connections below take
+ * G = SO(2) or SO(3). */
 #ifndef GEOMINT_REDUCTION_H
 #define GEOMINT_REDUCTION_H
 
@@ -152,6 +153,146 @@ gm_status gm_routh_discrete_step(gm_routh_discrete *d, double h, const double *x
  * "shape loop does not close" otherwise. angle gets k values. */
 gm_status gm_routh_holonomy(gm_routh_discrete *d, double h, size_t n_points, const double *loop,
                             double *angle);
+
+/* ---- discrete connections on a trivial principal bundle Q = G × S (seed 001 ch. 4) --------
+ *
+ * G acts on the left, g·(h, x) = (gh, x). Groups: SO(2), an element stored as its angle (one
+ * double, on the universal cover R: products add angles and holonomies are not reduced mod 2π),
+ * and SO(3), a rotation matrix (9 doubles, row-major; lie.h). Lie algebras: R and R³ (hat).
+ *
+ * A continuous principal connection in local form (seed 001 §4.1):
+ *   𝒜(x, g)(ẋ, ġ) = ġ g⁻¹ + Ad_g A(x) ẋ,   A(x): R^n → 𝔤 (a dim × n matrix),
+ * so a curve is horizontal iff g⁻¹ġ = −A(x)ẋ.
+ * A discrete connection in local form (seed 001 §4.2, notes §1F):
+ *   A_d((x0, g0), (x1, g1)) = g1 A(x0, x1) g0⁻¹,  A(x, x) = e;
+ * the pure group case (S a point) is A_d(g0, g1) = g1 g0⁻¹. hor(q0, q1) = (q0, A_d⁻¹ q1),
+ * ver(q0, q1) = (q0, A_d q0). The horizontal lift of a shape path from g0 is
+ *   g_{l+1} = g_l A(x_l, x_{l+1})⁻¹ = g0 (A(x_l, x_{l+1}) ⋯ A(x0, x1))⁻¹
+ * (the product on the right: notes §4 corrects Remark 4.2), and the holonomy of a closed shape
+ * loop is the lift's end point from g0 = e, (A_{N−1} ⋯ A_0)⁻¹ (from another g0 it is conjugated by
+ * g0). Its continuous limit: d/dt A_d(q(0), q(t))|₀ = 𝒜(q̇(0)).
+ *
+ * Rules for the local form A(x0, x1), Δx = x1 − x0, x(t) = x0 + tΔx:
+ *   GM_DCONN_CALLBACK    local(ctx, x0, x1, a) given by the user;
+ *   GM_DCONN_LEFT        exp(A(x0)Δx)                               (order 1: error O(h²));
+ *   GM_DCONN_MIDPOINT    exp(A(x̄)Δx), x̄ = (x0 + x1)/2             (order 2: O(h³));
+ *   GM_DCONN_MAGNUS4     exp(−w), w = ½(Ω₁ + Ω₂) + (√3/12) [Ω₁, Ω₂], Ω_i = −A(x(c_i))Δx at the
+ *                        Gauss points c = ½ ∓ √3/6 (the 4th-order Magnus expansion of the
+ *                        horizontal equation U̇ = UΩ(t), transposed from Y' = AY; order 4: O(h⁵));
+ *   GM_DCONN_TRANSPORT   the exact connection: the horizontal transport along the straight shape
+ *                        segment, U(1)⁻¹ for U̇ = −U A(x(t))Δx, U(0) = e, by classical RK4 with
+ *                        `substeps` steps (64 when 0) — an integrator independent of the rules
+ *                        above, so the order test checks their signs too (seed 001 Ex. 4.1 with
+ *                        the flat metric on the chart. exp(𝒜(loḡ(q0, q1))) with the product
+ *                        metric (bi-invariant on G, flat on the chart) is not used: at
+ *                        q0 = (x0, e), q1 = (x1, e) it is exp(A(x0)Δx), the LEFT rule, first
+ *                        order against the transport, and for nonabelian G not of local form);
+ *   GM_DCONN_MECHANICAL  the discrete mechanical connection: A_d = e iff J_d = 0 (seed 001 §4.4).
+ *                        momentum(ctx, x0, x1, w, j) gives the discrete momentum J_d of the pair
+ *                        ((x0, e), (x1, exp w)) (dim values, any frame: only its zero matters);
+ *                        Newton's method (difference Jacobian, from w = 0) solves J_d = 0 for w
+ *                        and A(x0, x1) = exp(w)⁻¹. Its order is the order of L_d. */
+typedef enum gm_group_kind { GM_GROUP_SO2 = 0, GM_GROUP_SO3 = 1 } gm_group_kind;
+typedef enum gm_dconn_rule {
+  GM_DCONN_CALLBACK = 0,
+  GM_DCONN_LEFT = 1,
+  GM_DCONN_MIDPOINT = 2,
+  GM_DCONN_MAGNUS4 = 3,
+  GM_DCONN_TRANSPORT = 4,
+  GM_DCONN_MECHANICAL = 5
+} gm_dconn_rule;
+
+#define GM_DCONN_MAX_SHAPE 8 /* n ≤ 8 */
+
+/* Element size (1 or 9 doubles) and algebra dimension (1 or 3); 0 for an unknown group. */
+size_t gm_group_size(gm_group_kind g);
+size_t gm_group_dim(gm_group_kind g);
+/* out = a b, out = a⁻¹, exp, log (SO(3): lie.h, |w| ≤ π; SO(2): the identity map on R). out may
+ * alias the inputs. */
+void gm_group_mul(gm_group_kind g, const double *a, const double *b, double *out);
+void gm_group_inv(gm_group_kind g, const double *a, double *out);
+void gm_group_exp(gm_group_kind g, const double *w, double *out);
+void gm_group_log(gm_group_kind g, const double *a, double *w);
+/* ‖log(a b⁻¹)‖ (the angle between two elements; SO(2): |a − b| on the cover). */
+double gm_group_distance(gm_group_kind g, const double *a, const double *b);
+
+typedef struct gm_discrete_connection {
+  gm_group_kind group;
+  size_t n;           /* shape dimension ≤ GM_DCONN_MAX_SHAPE; 0: the pure group case
+                       * A_d(g0, g1) = g1 g0⁻¹ (no callback; shape arguments may be NULL) */
+  gm_dconn_rule rule;
+  /* GM_DCONN_CALLBACK: A(x0, x1) ∈ G (gm_group_size values). Return 0 on success. */
+  int (*local)(void *ctx, const double *x0, const double *x1, double *a);
+  /* LEFT, MIDPOINT, MAGNUS4, TRANSPORT: the continuous A(x), dim × n row-major. */
+  int (*connection)(void *ctx, const double *x, double *a);
+  /* MECHANICAL: J_d((x0, e), (x1, exp w)), dim values. */
+  int (*momentum)(void *ctx, const double *x0, const double *x1, const double *w, double *j);
+  size_t substeps; /* TRANSPORT: RK4 steps (64 when 0) */
+  void *ctx;       /* borrowed; passed to the callbacks */
+} gm_discrete_connection;
+
+/* A(x0, x1). GM_EINVAL for a bad connection, GM_ECALLBACK when a callback fails, GM_ENOCONV
+ * (MECHANICAL) naming (x0, x1) and the residual when J_d = 0 has no solution Newton finds (the
+ * group-regularity of L_d fails there). */
+gm_status gm_dconn_local(const gm_discrete_connection *c, const double *x0, const double *x1,
+                         double *a, gm_error *err);
+/* A_d((x0, g0), (x1, g1)) = g1 A(x0, x1) g0⁻¹. */
+gm_status gm_dconn_eval(const gm_discrete_connection *c, const double *x0, const double *g0,
+                        const double *x1, const double *g1, double *ad, gm_error *err);
+/* Horizontal and vertical parts of (q0, q1): hor = (q0, (x1, A_d⁻¹ g1)), ver = (q0, (x0, A_d g0));
+ * g_hor and g_ver get the group parts (either may be NULL). A_d(hor) = e, A_d(ver) = A_d. */
+gm_status gm_dconn_decompose(const gm_discrete_connection *c, const double *x0, const double *g0,
+                             const double *x1, const double *g1, double *g_hor, double *g_ver,
+                             gm_error *err);
+/* The horizontal lift of the shape path x_0..x_{N−1} (n_points × n) from g0: g gets n_points
+ * elements, g_0 = g0, g_{l+1} = g_l A(x_l, x_{l+1})⁻¹. */
+gm_status gm_dconn_lift(const gm_discrete_connection *c, size_t n_points, const double *path,
+                        const double *g0, double *g, gm_error *err);
+/* Extended composition (seed 001 §4.3): (q0, q1)·(p0, p1) = (q0, (y1, A_d(p0, q1) h1)) for pairs
+ * q = ((x0, g0), (x1, g1)), p = ((y0, h0), (y1, h1)) with x1 = y0 (to 1e-12 (1 + |x1|); GM_EINVAL
+ * "the pairs do not compose" otherwise). g_out gets the group part of the second point. */
+gm_status gm_dconn_compose(const gm_discrete_connection *c, const double *x0, const double *g0,
+                           const double *x1, const double *g1, const double *y0, const double *h0,
+                           const double *y1, const double *h1, double *g_out, gm_error *err);
+/* Holonomy of a closed shape loop x_0..x_N (n_points = N + 1 points, x_N = x_0 to 1e-12 (1 + |x_0|),
+ * else GM_EINVAL "the shape loop does not close" with the gap): the lift's end point from e. */
+gm_status gm_dconn_holonomy(const gm_discrete_connection *c, size_t n_points, const double *loop,
+                            double *hol, gm_error *err);
+/* The order-test defect ‖A_d^a(q0, q1) A_d^b(q0, q1)⁻¹‖ = ‖log(A^a(x0, x1) A^b(x0, x1)⁻¹)‖ (it does
+ * not depend on g0, g1 for local forms; conjugation keeps the norm). */
+gm_status gm_dconn_defect(const gm_discrete_connection *a, const gm_discrete_connection *b,
+                          const double *x0, const double *x1, double *defect, gm_error *err);
+
+/* ---- geometric phases with closed forms (docs/reduction.md, "Phases") ------------------------
+ *
+ * The Levi-Civita connection of the unit sphere as a principal SO(2) connection over the upper
+ * hemisphere, in the chart x = (X, Y) (the point (X, Y, √(1 − X² − Y²))) with the frame
+ * (e_ϑ, e_φ): a tangent vector at angle β from e_ϑ is parallel iff β̇ = −cos ϑ φ̇, so
+ * A(x) = cos ϑ dφ = √(1 − ρ²)(X dY − Y dX)/ρ², ρ² = X² + Y² (1 × 2 row; singular at the pole,
+ * where the frame is). A callback for gm_discrete_connection.connection (ctx unused). Returns −1
+ * off the open hemisphere or at the pole. The holonomy of the latitude circle at colatitude α
+ * (counterclockwise about the north pole) is −2π cos α: relative to the local (north, east)
+ * frame a Foucault pendulum's plane turns by 2π cos α clockwise per sidereal day — 2π sin(latitude)
+ * — and relative to a parallel-transported frame the loop's holonomy is 2π(1 − cos α) mod 2π, the
+ * enclosed area (Gauss–Bonnet). */
+int gm_sphere_levi_civita(void *ctx, const double *x, double *a);
+
+/* Montgomery's rigid-body phase (R. Montgomery, "How much does the rigid body rotate?", Am. J.
+ * Phys. 59 (1991) 394): for the free rigid body with principal moments `inertia` and initial body
+ * momentum pi, Π(t) is periodic with period T (gm_free_rigid_body_period, closed form), and after
+ * one period R(T) = exp(Δθ m̂) R(0), m = RΠ the spatial momentum, with
+ *   Δθ = 2E T/‖m‖ − Λ  (mod 2π),
+ * E the kinetic energy and Λ the solid angle of the cone spanned by Π(t) on its side of the
+ * encircled principal axis, oriented by the motion (Λ > 0 when Π circles that axis
+ * counterclockwise seen from its tip). period, dynamic = 2ET/‖m‖ and solid_angle = Λ are
+ * written; Λ = ∮(1 − cos ϑ) dφ about the encircled axis is a quadrature along Π(t) from Euler's
+ * equations (classical RK4 with `steps` steps per period, 20000 when 0; error ~ (T/steps)⁴).
+ * GM_EINVAL for a separatrix, a steady spin or non-distinct moments. */
+gm_status gm_rigid_body_phase(const double inertia[3], const double pi[3], size_t steps,
+                              double *period, double *dynamic, double *solid_angle, gm_error *err);
+
+/* The angle of r1 r0ᵀ about the unit axis u, in (−π, π] (r1 r0ᵀ must be a rotation about u). */
+double gm_so3_angle_about(const double r0[9], const double r1[9], const double u[3]);
 
 /* ---- the two systems of seed 001 §2.9–2.10 ------------------------------------------------ */
 

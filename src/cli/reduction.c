@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include "cli/cli.h"
+#include "cli/reduction_phases.h"
 
 static const char usage[] =
     "usage: geomint reduction EXPERIMENT [--out DIR] [--no-plot] [--dt H] [--t-end T]\n\n"
@@ -21,6 +22,12 @@ static const char usage[] =
     "                   RK4 on the unreduced system at dt/4; dt = 0.01, t = 0..20 (figures\n"
     "                   2.7-2.9); m1 = m2 = 1, l1 = l2 = 1, g = 9.81, mu = 1; also the\n"
     "                   constrained R^3 x R^3 form (vi-galerkin-gauss-2) from the same state\n"
+    "  phases           geometric phases against closed forms (seed 001 ch. 4): Foucault's\n"
+    "                   pendulum and a spherical cap (Levi-Civita holonomy of the sphere),\n"
+    "                   Montgomery's rigid-body phase (lgvi, lgvi-galerkin-2), a shape loop of\n"
+    "                   the double spherical pendulum at mu = 0, and the tet-mesh Levi-Civita\n"
+    "                   holonomy against the deficit angle; prints the table; with --out also\n"
+    "                   DIR/phases-convergence.csv and .png (errors vs points / steps)\n"
     "Writes DIR/*.csv and draws DIR/*.png with gnuplot; prints the measured numbers.\n\n"
     "options:\n"
     "  --out DIR   output directory, created if missing (default reduction-output)\n"
@@ -446,6 +453,7 @@ static int run_dsp(const char *dir, int no_plot, double h, double t_end) {
   fprintf(f, "t,r1,r2,phi,x2,y2,dE_rsprk,dE_sprk,dE_rk4,rel_r1,rel_r2,rel_phi,rel_E,r1_rk4,r2_rk4,phi_rk4,min_r\n");
   const size_t n = (size_t)llround(t_end / h);
   double worst[4] = {0, 0, 0, 0}, emax_a = 0, emax_rk = 0, emax_a_half = 0, r_min = INFINITY;
+  double tenth[2][2] = {{0, 0}, {0, 0}}; /* max |dE| in the first and last tenth: RSPRK, RK4 */
   int rc = 0;
   for (size_t i = 0; i <= n; ++i) {
     if (i > 0) {
@@ -473,6 +481,8 @@ static int run_dsp(const char *dir, int no_plot, double h, double t_end) {
     emax_a = fmax(emax_a, fabs(da));
     if ((double)i * h <= 0.5 * t_end) emax_a_half = fmax(emax_a_half, fabs(da));
     emax_rk = fmax(emax_rk, fabs(dk));
+    if (i > 0 && (i - 1) * 10 < n) tenth[0][0] = fmax(tenth[0][0], fabs(da)), tenth[1][0] = fmax(tenth[1][0], fabs(dk));
+    if (i > 0 && (i - 1) * 10 >= 9 * n) tenth[0][1] = fmax(tenth[0][1], fabs(da)), tenth[1][1] = fmax(tenth[1][1], fabs(dk));
     r_min = fmin(r_min, fmin(x[0], x[1]));
     const double th2 = th + x[2];
     fprintf(f, "%.8g,%.12g,%.12g,%.12g,%.10g,%.10g,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.6e,%.12g,%.12g,%.12g,%.6g\n",
@@ -491,6 +501,9 @@ static int run_dsp(const char *dir, int no_plot, double h, double t_end) {
          dsp_x0[4], dsp_x0[5], h, t_end);
   printf("  max |E - E0|/|E0|: RSPRK (vi-galerkin-gauss-2) %.3g (first half %.3g), RK4 at dt/4 %.3g\n",
          emax_a, emax_a_half, emax_rk);
+  printf("  max |E - E0|/|E0| in the first / last tenth of the run: RSPRK %.3g / %.3g, RK4 at dt/4 "
+         "%.3g / %.3g\n",
+         tenth[0][0], tenth[0][1], tenth[1][0], tenth[1][1]);
   printf("  max relative RSPRK - classical SPRK: r1 %.3g, r2 %.3g, phi %.3g, E %.3g\n", worst[0],
          worst[1], worst[2], worst[3]);
   printf("  smallest r_i along the run: %.4f\n", r_min);
@@ -541,15 +554,39 @@ static int routh_main(int argc, char **argv) {
   }
   if (rc != CLI_EXIT_OK) return rc;
   if (npos != 1) {
-    cli_error("reduction", "expected one experiment: j2-satellite or double-spherical-pendulum");
+    cli_error("reduction", "expected one experiment: j2-satellite, double-spherical-pendulum or phases");
     return CLI_EXIT_USAGE;
   }
   if ((options[4].seen && cli_check_positive("reduction", "--dt", dt)) ||
       (options[5].seen && cli_check_positive("reduction", "--t-end", t_end)))
     return CLI_EXIT_USAGE;
+  if (strcmp(pos[0], "phases") == 0) {
+    rc = cli_reduction_phases();
+    if (rc != CLI_EXIT_OK || !options[0].seen) return rc; /* files only with --out */
+    if (make_directory(dir)) return CLI_EXIT_FAILURE;
+    FILE *f = open_out(dir, "phases-convergence.csv");
+    if (f == NULL) return CLI_EXIT_FAILURE;
+    rc = cli_reduction_phases_convergence(f);
+    if (fclose(f) != 0 && rc == CLI_EXIT_OK) rc = CLI_EXIT_FAILURE;
+    if (rc != CLI_EXIT_OK || no_plot) return rc;
+    return plot(dir, "phases-convergence.png",
+                "set logscale xy\nset format y '10^{%L}'\nset xlabel 'points per loop / steps per period'\n"
+                "set ylabel 'phase error'\nset key outside right\nset grid\n"
+                "set title 'Geometric phases: error vs closed form (solid) and vs the polygon exact holonomy (dashed)'\n"
+                "plot 'phases-convergence.csv' every ::1 using 1:2 w lp lw 2 t 'Foucault, midpoint conn.', "
+                "'' every ::1 using 1:3 w lp lw 2 t 'Foucault, Gauss-2 conn.', "
+                "'' every ::1 using 1:4 w lp dt 2 lw 2 t 'Foucault, Gauss-2 vs polygon', "
+                "'' every ::1 using 1:5 w lp dt 2 lw 2 t 'DSP loop, midpoint vs polygon', "
+                "'' every ::1 using 1:6 w lp dt 2 lw 2 t 'DSP loop, Gauss-2 vs polygon', "
+                "'' every ::1 using 1:7 w lp lw 2 t 'rigid body, lgvi', "
+                "'' every ::1 using 1:8 w lp lw 2 t 'rigid body, lgvi-galerkin-2', "
+                "'' every ::1 using 1:(2e-1/$1**2) w l lc rgb '#999999' t 'N^{-2}', "
+                "'' every ::1 using 1:(1e0/$1**4) w l lc rgb '#555555' t 'N^{-4}'");
+  }
   const int j2 = strcmp(pos[0], "j2-satellite") == 0;
   if (!j2 && strcmp(pos[0], "double-spherical-pendulum") != 0) {
-    cli_error("reduction", "unknown experiment '%s'; expected j2-satellite or double-spherical-pendulum",
+    cli_error("reduction",
+              "unknown experiment '%s'; expected j2-satellite, double-spherical-pendulum or phases",
               pos[0]);
     return CLI_EXIT_USAGE;
   }

@@ -56,3 +56,31 @@ Test(reduction, bad_input_exits_2) {
     run_output_free(&r);
   }
 }
+
+/* the phases table: Montgomery's phase with lgvi-galerkin-2 to 1e-7 at T/256, lgvi at order 2,
+ * the tet-mesh holonomy equal to the deficit */
+Test(reduction, phases_table) {
+  run_output r = run_cli("reduction phases");
+  cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+  double closed = NAN, got = NAN, e1 = NAN, e2 = NAN, order = NAN;
+  const char *p = strstr(r.out, "lgvi-galerkin-2 ");
+  cr_assert_not_null(p, "%s", r.out);
+  cr_assert_eq(sscanf(p, "lgvi-galerkin-2 %lf %lf %lf %lf %lf", &closed, &got, &e1, &e2, &order), 5);
+  cr_expect(e2 < 1e-7 && fabs(order - 4.0) < 0.3, "%s", p);
+  p = strstr(r.out, "lgvi ");
+  cr_assert_not_null(p);
+  cr_assert_eq(sscanf(p, "lgvi %lf %lf %lf %lf %lf", &closed, &got, &e1, &e2, &order), 5);
+  cr_expect(fabs(order - 2.0) < 0.2, "%s", p);
+  for (const char *q = r.out; (q = strstr(q, "tet Levi-Civita")) != NULL; ++q) {
+    cr_assert_eq(sscanf(q, "tet Levi-Civita %lf %lf %lf", &closed, &got, &e1), 3);
+    cr_expect(e1 < 1e-12 && fabs(got - closed) < 1e-12, "%s", q);
+  }
+  run_output_free(&r);
+  r = run_cli("reduction phases --no-plot --out %s", tmpdir);
+  cr_assert_eq(r.status, 0, "stderr: %s", r.err);
+  char *csv = read_file(path_in_tmp("phases-convergence.csv"));
+  cr_assert_not_null(csv);
+  cr_expect_eq(count_lines(csv), 7); /* header + N = 16 .. 512 */
+  free(csv);
+  run_output_free(&r);
+}

@@ -450,3 +450,153 @@ Test(routh, discrete_mechanical_connection_order) {
   gm_rsprk_free(r);
   gm_tableau_free(t);
 }
+
+/* The discrete mechanical connection of the 2-point Gauss Galerkin L_d (order 4), as a
+ * gm_discrete_connection callback: J_d(q0, q1) = 0 at μ = 0 holds exactly for the pairs of one
+ * RSPRK step at μ = 0 (p_θ = μ is kept), so for given (x0, x1) Newton's method on the initial
+ * reduced momentum s0 (difference Jacobian) finds the step that lands on x1, and its θ-increment
+ * Δθ is the group element: θ1 = θ0 + Δθ, i.e. A(x0, x1) = −Δθ on SO(2) (g1 = g0 A⁻¹). Its
+ * order against the exact flow is the order of L_d: local error O(h⁵). */
+typedef struct {
+  gm_routh_system *sys;
+  gm_rsprk *r;
+  double h;
+} galerkin_conn;
+
+static int galerkin_local(void *ctx, const double *x0, const double *x1, double *a) {
+  galerkin_conn *g = ctx;
+  const double mu[1] = {0.0};
+  double kin[9], xm[3], s[3], dx[3];
+  for (int i = 0; i < 3; ++i) xm[i] = 0.5 * (x0[i] + x1[i]), dx[i] = (x1[i] - x0[i]) / g->h;
+  if (gm_routh_connection(g->sys, mu, xm, NULL, NULL, kin, NULL, NULL, NULL, NULL) != GM_OK) return -1;
+  for (int i = 0; i < 3; ++i) s[i] = kin[3 * i] * dx[0] + kin[3 * i + 1] * dx[1] + kin[3 * i + 2] * dx[2];
+  for (int it = 0; it < 30; ++it) {
+    double x[3], sv[3], th = 0.0, f[3], jac[9];
+    memcpy(x, x0, sizeof x), memcpy(sv, s, sizeof sv);
+    if (gm_rsprk_step(g->r, g->h, x, sv, &th) != GM_OK) return -1;
+    double res = 0.0;
+    for (int i = 0; i < 3; ++i) f[i] = x[i] - x1[i], res = fmax(res, fabs(f[i]));
+    if (res < 1e-15) {
+      a[0] = -th;
+      return 0;
+    }
+    for (int j = 0; j < 3; ++j) {
+      const double d = 1e-7 * (1.0 + fabs(s[j]));
+      double xp[3], sp[3], tp = 0.0;
+      memcpy(xp, x0, sizeof xp), memcpy(sp, s, sizeof sp);
+      sp[j] += d;
+      if (gm_rsprk_step(g->r, g->h, xp, sp, &tp) != GM_OK) return -1;
+      for (int i = 0; i < 3; ++i) jac[3 * i + j] = (xp[i] - x[i]) / d;
+    }
+    if (gm_dense_solve(3, jac, f) != GM_OK) return -1;
+    double step = 0.0;
+    for (int i = 0; i < 3; ++i) s[i] -= f[i], step = fmax(step, fabs(f[i]));
+    if (step < 1e-16 * (1.0 + fabs(s[0]) + fabs(s[1]) + fabs(s[2]))) {
+      memcpy(x, x0, sizeof x), memcpy(sv, s, sizeof sv), th = 0.0;
+      if (gm_rsprk_step(g->r, g->h, x, sv, &th) != GM_OK) return -1;
+      a[0] = -th;
+      return 0;
+    }
+  }
+  return -1;
+}
+
+Test(routh, galerkin_mechanical_connection_order) {
+  gm_routh_system sys;
+  gm_routh_double_spherical_pendulum(&dspp, &sys);
+  const double mu[1] = {0.0};
+  gm_tableau *t3 = galerkin(3), *t2 = galerkin(2);
+  gm_rsprk *ref = NULL, *r2 = NULL;
+  cr_assert_eq(gm_rsprk_create(&sys, t3, GM_ROUTH_RSPRK, mu, &ref, NULL), GM_OK);
+  cr_assert_eq(gm_rsprk_create(&sys, t2, GM_ROUTH_RSPRK, mu, &r2, NULL), GM_OK);
+  galerkin_conn g = {&sys, r2, 0.0};
+  gm_discrete_connection c;
+  memset(&c, 0, sizeof c);
+  c.group = GM_GROUP_SO2;
+  c.n = 3;
+  c.rule = GM_DCONN_CALLBACK;
+  c.local = galerkin_local;
+  c.ctx = &g;
+  const double x0[3] = {0.6, 0.5, 1.0}, xd[3] = {0.3, -0.2, 0.5};
+  double kin[9], s0[3];
+  cr_assert_eq(gm_routh_connection(&sys, mu, x0, NULL, NULL, kin, NULL, NULL, NULL, NULL), GM_OK);
+  for (int i = 0; i < 3; ++i) s0[i] = kin[3 * i] * xd[0] + kin[3 * i + 1] * xd[1] + kin[3 * i + 2] * xd[2];
+  double err[5];
+  for (int l = 0; l < 5; ++l) {
+    const double h = 0.2 / (double)(1 << l);
+    double x[3], s[3], th = 0.0, a;
+    memcpy(x, x0, sizeof x), memcpy(s, s0, sizeof s);
+    for (int k = 0; k < 40; ++k) cr_assert_eq(gm_rsprk_step(ref, h / 40, x, s, &th), GM_OK);
+    g.h = h;
+    gm_error e;
+    cr_assert_eq(gm_dconn_local(&c, x0, x, &a, &e), GM_OK, "%s", e.message);
+    err[l] = fabs(-a - th);
+  }
+  const double p3 = log2(err[2] / err[3]), p4 = log2(err[3] / err[4]);
+  cr_log_info("mechanical connection of the Gauss-2 Galerkin L_d (order 4): errors %.3g %.3g %.3g %.3g %.3g "
+              "(h = 0.2 .. 0.0125), local orders %.3f %.3f %.3f %.3f", err[0], err[1], err[2], err[3], err[4],
+              log2(err[0] / err[1]), log2(err[1] / err[2]), p3, p4);
+  cr_expect(fabs(p4 - 5.0) < 0.4, "local order %.3f, expected 5", p4);
+  gm_rsprk_free(ref);
+  gm_rsprk_free(r2);
+  gm_tableau_free(t3);
+  gm_tableau_free(t2);
+}
+
+/* Fig. 2.8–2.9's contrast (seed 001 §2.10): on the double spherical pendulum away from the chart's
+ * singularity (μ = 6, x0 = (0.7, 0.6, 1.0) at rest: min r_i = 0.34), the 4th-order RSPRK's energy
+ * error is bounded and RK4 on the unreduced system at h/4 (four times the steps) drifts linearly.
+ * Max |E − E0|/|E0| over the first and last tenth of t = 0..500, h = 0.05. */
+static double dsp_full_energy(const gm_routh_system *sys, const double *y) {
+  double m[16], v[4];
+  cr_assert_eq(sys->metric(sys->ctx, y + 1, m), 0);
+  memcpy(v, y + 4, sizeof v);
+  cr_assert_eq(gm_dense_solve(4, m, v), GM_OK);
+  double e = sys->potential(sys->ctx, y + 1);
+  for (int i = 0; i < 4; ++i) e += 0.5 * y[4 + i] * v[i];
+  return e;
+}
+
+Test(routh, dsp_energy_bounded_vs_rk4_drift, .timeout = 120) {
+  gm_routh_dsp_params p = {1.0, 1.0, 1.0, 1.0, 9.81};
+  gm_routh_system sys;
+  gm_routh_double_spherical_pendulum(&p, &sys);
+  const double mu[1] = {6.0}, h = 0.05, t_end = 500.0;
+  gm_tableau *t = NULL;
+  cr_assert_eq(gm_method_tableau(gm_method_find("vi-galerkin-gauss-2"), &t), GM_OK);
+  gm_rsprk *ra = NULL;
+  cr_assert_eq(gm_rsprk_create(&sys, t, GM_ROUTH_RSPRK, mu, &ra, NULL), GM_OK);
+  double x[3] = {0.7, 0.6, 1.0}, s[3] = {0, 0, 0}, y[3], full[8] = {0};
+  cr_assert_eq(gm_routh_lift_momentum(&sys, mu, x, s, y, NULL), GM_OK);
+  memcpy(full + 1, x, sizeof x);
+  full[4] = mu[0];
+  memcpy(full + 5, y, sizeof y);
+  const double e0 = gm_routh_energy(&sys, mu, x, s), e0f = dsp_full_energy(&sys, full);
+  cr_expect(fabs(e0 - e0f) < 1e-13 * fabs(e0), "reduced and full energies agree at t = 0");
+  const size_t n = (size_t)llround(t_end / h);
+  double win[2][10] = {{0}}, r_min = 1.0;
+  for (size_t i = 1; i <= n; ++i) {
+    cr_assert_eq(gm_rsprk_step(ra, h, x, s, NULL), GM_OK, "%s", gm_rsprk_errmsg(ra));
+    for (int q = 0; q < 4; ++q) {
+      double k[4][8], w[8];
+      const double hh = h / 4, c[4] = {0, 0.5, 0.5, 1};
+      for (int st = 0; st < 4; ++st) {
+        for (int j = 0; j < 8; ++j) w[j] = full[j] + (st ? c[st] * hh * k[st - 1][j] : 0.0);
+        cr_assert_eq(gm_routh_full_rhs(&sys, w, k[st], NULL), GM_OK);
+      }
+      for (int j = 0; j < 8; ++j) full[j] += hh / 6 * (k[0][j] + 2 * k[1][j] + 2 * k[2][j] + k[3][j]);
+    }
+    const size_t wi = (i - 1) * 10 / n;
+    win[0][wi] = fmax(win[0][wi], fabs(gm_routh_energy(&sys, mu, x, s) - e0) / fabs(e0));
+    win[1][wi] = fmax(win[1][wi], fabs(dsp_full_energy(&sys, full) - e0f) / fabs(e0f));
+    r_min = fmin(r_min, fmin(x[0], x[1]));
+  }
+  cr_log_info("DSP mu = 6, h = 0.05, t = 0..500 (min r_i %.3f): max |dE|/|E0| RSPRK first/last tenth "
+              "%.3g / %.3g, RK4 at h/4 %.3g / %.3g", r_min, win[0][0], win[0][9], win[1][0], win[1][9]);
+  cr_expect_gt(r_min, 0.2, "the run stays away from the chart's singularity");
+  cr_expect_lt(win[0][9], 1.5 * win[0][0], "RSPRK energy error bounded: %.3g then %.3g", win[0][0], win[0][9]);
+  cr_expect_gt(win[1][9], 5.0 * win[1][0], "RK4 energy error drifts: %.3g then %.3g", win[1][0], win[1][9]);
+  cr_expect_gt(win[1][9], 2.0 * win[0][9], "RK4 at h/4 ends above RSPRK: %.3g vs %.3g", win[1][9], win[0][9]);
+  gm_rsprk_free(ra);
+  gm_tableau_free(t);
+}
