@@ -25,6 +25,7 @@ extern const cli_command cli_list_command, cli_run_command, cli_order_command,
     cli_demo_command, cli_wp_command, cli_mesh_command, cli_mimetic_command;
 extern const cli_command cli_oscillatory_command;
 extern const cli_command cli_maxwell_command; /* maxwell.c */
+extern const cli_command cli_routh_command;   /* reduction.c, alias of reduction */
 extern const cli_command cli_reduction_command; /* reduction.c */
 extern const cli_command cli_pde_command;
 

@@ -13,6 +13,7 @@ static const cli_command *const commands[] = {&cli_list_command, &cli_run_comman
                                               &cli_oscillatory_command,
                                               &cli_maxwell_command,
                                               &cli_reduction_command,
+                                              &cli_routh_command,
                                               &cli_pde_command};
 #define N_COMMANDS (sizeof commands / sizeof commands[0])
 

@@ -619,3 +619,6 @@ static int routh_main(int argc, char **argv) {
 const cli_command cli_reduction_command = {"reduction",
                                        "discrete Routh reduction experiments (seed 001 2.9-2.10)",
                                        usage, routh_main};
+/* The issue and seed 001 call the experiments "discrete Routh reduction": the same command under
+   that name. */
+const cli_command cli_routh_command = {"routh", "the same as reduction", usage, routh_main};

@@ -84,3 +84,14 @@ Test(reduction, phases_table) {
   free(csv);
   run_output_free(&r);
 }
+
+/* `geomint routh` is the same command under the seed's name: same run, same printed numbers. */
+Test(reduction, routh_is_reduction) {
+  run_output a = run_cli("routh double-spherical-pendulum --no-plot --t-end 1 --out %s", tmpdir);
+  run_output b = run_cli("reduction double-spherical-pendulum --no-plot --t-end 1 --out %s", tmpdir);
+  cr_assert_eq(a.status, 0, "stderr: %s", a.err);
+  cr_assert_eq(b.status, 0, "stderr: %s", b.err);
+  cr_expect_str_eq(a.out, b.out);
+  run_output_free(&a);
+  run_output_free(&b);
+}
