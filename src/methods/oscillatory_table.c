@@ -23,7 +23,11 @@ static double sinc2_half(double xi) {
   const double s = gm_sinc(0.5 * xi);
   return s * s;
 }
-/* Hochbruck & Lubich (1999): φ(ξ) = sinc(ξ)(1 + ⅓ sin²(ξ/2)) (GNI XIII.2.2 (D)) */
+/* Hochbruck & Lubich (1999): φ(ξ) = sinc(ξ)(1 + ⅓ sin²(ξ/2)) (GNI XIII.2.2 (D)). The constant
+ * ⅓ is the one for which, with ψ = sinc²(ξ/2), ψφ = sinc(ξ) + O(ξ⁴): the frequency shift a
+ * linear slow force causes is right to O(ξ⁴) (a = ½ would leave an O(ξ²) error); derived and
+ * tested in tests/unit/test_oscillatory_filters.c, since the book's text could not be
+ * retrieved here to compare. */
 static double phi_hochbruck_lubich(double xi) {
   const double s = sin(0.5 * xi);
   return gm_sinc(xi) * (1.0 + s * s / 3.0);
