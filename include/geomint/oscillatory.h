@@ -111,14 +111,18 @@ typedef struct gm_msvi_options {
   double omega;         /* 0: √(k/m) */
   size_t degree;        /* of P and T, 1..3 (default 2) */
   size_t filon_points;  /* 2..8 (default 3) */
-  int additive;         /* 1 (default): a = P + α sin ωτ + β cos ωτ; 0: the seed's
+  int additive;         /* 2 (default): the seed's product on the radius,
+                           l + a = (l + P)(1 + α sin ωτ + β cos ωτ); 1: the additive space
+                           a = P + α sin ωτ + β cos ωτ; 0: the seed's product on the stretch,
                            a = P (1 + α sin ωτ + β cos ωτ), whose Newton system fails to converge
                            on this problem (docs/oscillatory.md) */
+  int start_from_additive; /* product spaces: start each step's Newton iteration from the
+                              additive space's solution of the same step (default 0) */
 } gm_msvi_options;
 typedef struct gm_msvi gm_msvi;
 
 gm_msvi_options gm_msvi_defaults(void); /* m = 1, g = 9.81, k = 10⁴, l = 1, degree 2, 3 points,
-                                           additive */
+                                           product on the radius (additive = 2) */
 gm_status gm_msvi_create(const gm_msvi_options *options, gm_msvi **out, gm_error *err);
 void gm_msvi_free(gm_msvi *vi);
 /* One step of size h from (q, p) (both 2 values, overwritten). Newton's method on the

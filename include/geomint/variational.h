@@ -55,6 +55,10 @@ gm_status gm_variational_set_alpha(gm_integrator *it, double alpha);
 double gm_variational_discrete_energy(const gm_integrator *it);
 double gm_variational_last_energy_error(const gm_integrator *it);
 size_t gm_variational_energy_fallbacks(const gm_integrator *it);
+/* Steps where the energy equation fixed the step size only to worse than 1e-3 relative (its
+ * h-derivative at the rounding level of E_d), so the previous step size was kept (0 for other
+ * methods); see docs/variational.md. */
+size_t gm_variational_unresolved_steps(const gm_integrator *it);
 /* The largest |E_d − E| over the steps since the energy was set (NaN before it or for other
  * methods): what `geomint run` reports, relative to |E|, as the discrete energy error. */
 double gm_variational_max_energy_error(const gm_integrator *it);

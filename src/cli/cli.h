@@ -132,6 +132,7 @@ typedef struct cli_sim_result {
   double discrete_energy; /* E of the run (set by the first step) */
   double max_rel_discrete_energy_error; /* max |E_d − E| / |E| over the steps */
   size_t energy_fallbacks;
+  size_t energy_unresolved; /* steps whose size the energy equation did not resolve (kept) */
   int restarted;          /* from restart_path, at restart_step / restart_t */
   size_t restart_step;
   double restart_t;

@@ -23,6 +23,8 @@ static const char usage[] =
     "                  vti h = 0.05 (Fig 2.3)\n"
     "  work-precision  FPU, T = 200: error of the slow components and of I at T against the\n"
     "                  step, for every oscillatory row, verlet and the best composition\n"
+    "  step-scan       FPU, T = 200: for each oscillatory row the largest step (h = 200/n,\n"
+    "                  0.04 to 0.3, 2% apart) with I error <= 1e-2; table only, not in 'all'\n"
     "  multiscale      the multiscale variational integrator on the stiff spring pendulum\n"
     "                  (seed 001 5.7.2) against vi-midpoint and imex, and 1-D MsFEM against P1\n"
     "                  (seed 001 5.7.1): tables only\n"
@@ -385,9 +387,9 @@ static int average_i(void *ctx, size_t step, double t, const double *y) {
 }
 
 /* State at T = 200 and the block averages of I; returns 0 when the run failed. */
-static int fpu_final(const gm_model *model, const char *method, double h, double *y,
-                     double *means, gm_stats *stats) {
-  gm_integrator *it = start(model, method, 0);
+static int fpu_final_n(const gm_model *model, const char *method, size_t substeps, double h,
+                       double *y, double *means, gm_stats *stats) {
+  gm_integrator *it = start(model, method, substeps);
   if (it == NULL) return 0;
   block_average b;
   memset(&b, 0, sizeof b);
@@ -399,6 +401,92 @@ static int fpu_final(const gm_model *model, const char *method, double h, double
   *stats = gm_integrator_stats(it);
   gm_integrator_free(it);
   return st == GM_OK;
+}
+
+static int fpu_final(const gm_model *model, const char *method, double h, double *y,
+                     double *means, gm_stats *stats) {
+  return fpu_final_n(model, method, 0, h, y, means, stats);
+}
+
+/* ---- the step that reaches I error 1e-2, on a fine grid ------------------------------------
+ * Steps h = 200/n for n = 5000 down to 667 (h = 0.04 … 0.3, every n with h·ω/π on a 1 %
+ * grid, plus n = 1000: h = 0.2 exactly); the I error as in work-precision (block averages
+ * against blanes-moan-6, h = 0.0002). For each row: the first step above 2/ω = 0.04 where the
+ * I error exceeds 1e-2, the largest step with I error ≤ 1e-2, the error at 5 × 2/ω = 0.2 and
+ * the share of the scanned steps in [0.2, 0.3] that reach 1e-2. The fast resonances hω = kπ of
+ * FPU's ω = 50 are at h = 0.0628 k. */
+static int experiment_step_scan(const char *dir) {
+  static const struct {
+    const char *name;
+    size_t substeps;
+  } rows[] = {{"imex", 0},
+              {"impulse", 0},
+              {"impulse", 50},
+              {"mollified-impulse-sinc", 0},
+              {"mollified-impulse-sinc", 10},
+              {"mollified-impulse-sinc", 50},
+              {"trig-gautschi", 0},
+              {"trig-deuflhard", 0},
+              {"trig-garcia-archilla", 0},
+              {"trig-hochbruck-lubich", 0},
+              {"trig-hairer-lubich", 0},
+              {"vti", 0}};
+  enum { N_ROWS = sizeof rows / sizeof rows[0] };
+  gm_model *model = NULL;
+  int rc = open_fpu(&model);
+  if (rc != CLI_EXIT_OK) return rc;
+  double ref[12], ref_means[WP_BLOCKS];
+  gm_stats stats;
+  if (!fpu_final(model, "blanes-moan-6", 0.0002, ref, ref_means, &stats)) {
+    gm_model_free(model);
+    return CLI_EXIT_FAILURE;
+  }
+  char csv[4096];
+  snprintf(csv, sizeof csv, "%s/step-scan.csv", dir);
+  FILE *f = open_file(csv);
+  if (f == NULL) {
+    gm_model_free(model);
+    return CLI_EXIT_FAILURE;
+  }
+  fprintf(f, "method,substeps,h,h_omega_over_pi,I_error\n");
+  printf("step-scan: FPU (l = 3, omega = 50), T = 200; I error as in work-precision; steps\n"
+         "  h = 200/n from 2/omega = 0.04 to 0.3 (h*omega/pi on a 1%% grid, and h = 0.2);\n"
+         "  resonances h*omega = k*pi at h = 0.0628 k\n");
+  printf("  %-24s %4s %12s %10s %8s %12s %12s\n", "method", "n", "first fail h", "largest h",
+         "h/(2/w)", "I err at 0.2", "pass >= 0.2");
+  for (size_t r = 0; r < N_ROWS; ++r) {
+    double largest = 0.0, first_fail = NAN, at_02 = NAN;
+    size_t n_above = 0, pass_above = 0;
+    long n_prev = 0;
+    for (double x = 0.64; x <= 4.8 + 1e-9; x += 0.01) { /* x = hω/π */
+      long n = lround(200.0 * 50.0 / (3.14159265358979323846 * x));
+      if (n_prev > 1000 && n < 1000) n = 1000, x -= 0.01; /* h = 0.2 itself */
+      if (n == n_prev) continue;
+      n_prev = n;
+      const double h = 200.0 / (double)n;
+      double y[12], means[WP_BLOCKS], ierr = INFINITY;
+      if (fpu_final_n(model, rows[r].name, rows[r].substeps, h, y, means, &stats)) {
+        ierr = 0.0;
+        for (size_t b = 0; b < WP_BLOCKS; ++b) ierr = fmax(ierr, fabs(means[b] - ref_means[b]));
+        if (!isfinite(ierr)) ierr = INFINITY;
+      }
+      fprintf(f, "%s,%zu,%.6g,%.6g,%.6e\n", rows[r].name, rows[r].substeps, h,
+              h * 50.0 / 3.14159265358979323846, isinf(ierr) ? 1e10 : ierr);
+      if (ierr <= 1e-2) largest = fmax(largest, h);
+      else if (isnan(first_fail)) first_fail = h;
+      if (n == 1000) at_02 = ierr;
+      if (n <= 1000) {
+        n_above++;
+        if (ierr <= 1e-2) pass_above++;
+      }
+    }
+    printf("  %-24s %4zu %12.4g %10.4g %8.2f %12.3e %6zu of %zu\n", rows[r].name,
+           rows[r].substeps, first_fail, largest, largest / 0.04, at_02, pass_above, n_above);
+  }
+  fclose(f);
+  gm_model_free(model);
+  printf("  (n: impulse substeps, 0 = the row's default; data: %s)\n", csv);
+  return CLI_EXIT_OK;
 }
 
 static int experiment_work_precision(const char *dir, int plot) {
@@ -592,21 +680,28 @@ static int experiment_multiscale(void) {
   printf("multiscale VI (seed 001 5.7.2): stiff spring pendulum m = 1, g = 9.81, k = 1e4, l = 1,\n"
          "  theta0 = 1 at rest; fast period 2 pi/100 = 0.063; errors at T against\n"
          "  vi-galerkin-gauss-2 with h = 1e-4 (4th order, h omega = 0.01)\n");
-  printf("  %5s %6s %7s | %-21s | %-21s | %-21s | %s\n", "T", "h", "h omega", "msvi (additive)",
-         "vi-midpoint (polar)", "imex (Cartesian)", "msvi, seed's product space");
+  printf("  %5s %6s %7s | %-21s | %-21s | %-21s | %-21s | %s\n", "T", "h", "h omega",
+         "msvi (additive)", "vi-midpoint (polar)", "imex (Cartesian)", "msvi, product on l+a",
+         "msvi, product on a (seed)");
   static const double ts[] = {1.0, 10.0}, hs[] = {0.2, 0.1, 0.05, 0.025};
   for (size_t i = 0; i < 2; ++i) {
     double ar, thr;
     if (spring_row("vi-galerkin-gauss-2", ts[i], 1e-4, &ar, &thr) != CLI_EXIT_OK)
       return CLI_EXIT_FAILURE;
     for (size_t j = 0; j < 4; ++j) {
-      double a1 = NAN, t1 = NAN, a2 = NAN, t2 = NAN, a3 = NAN, t3 = NAN, a4 = NAN, t4 = NAN, nw, nw2;
+      double a1 = NAN, t1 = NAN, a2 = NAN, t2 = NAN, a3 = NAN, t3 = NAN, a4 = NAN, t4 = NAN,
+             a5 = NAN, t5 = NAN, nw, nw2, nw5;
       const size_t n = (size_t)llround(ts[i] / hs[j]);
       size_t done = spring_msvi(1, ts[i], hs[j], &a1, &t1, &nw);
       size_t done2 = spring_msvi(0, ts[i], hs[j], &a4, &t4, &nw2);
+      size_t done5 = spring_msvi(2, ts[i], hs[j], &a5, &t5, &nw5);
       int r2 = spring_row("vi-midpoint", ts[i], hs[j], &a2, &t2);
       int r3 = spring_imex(ts[i], hs[j], &a3, &t3);
-      char c1[64], c2[64], c3[64], c4[64];
+      char c1[64], c2[64], c3[64], c4[64], c5[64];
+      if (done5 == n)
+        snprintf(c5, sizeof c5, "da %.1e dth %.1e", fabs(a5 - ar), fabs(t5 - thr));
+      else
+        snprintf(c5, sizeof c5, "Newton fails, step %zu", done5 + 1);
       if (done == n)
         snprintf(c1, sizeof c1, "da %.1e dth %.1e", fabs(a1 - ar), fabs(t1 - thr));
       else
@@ -619,10 +714,11 @@ static int experiment_multiscale(void) {
         snprintf(c4, sizeof c4, "da %.1e dth %.1e", fabs(a4 - ar), fabs(t4 - thr));
       else
         snprintf(c4, sizeof c4, "Newton fails at step %zu of %zu", done2 + 1, n);
-      printf("  %5g %6g %7g | %-21s | %-21s | %-21s | %s\n", ts[i], hs[j], 100.0 * hs[j], c1,
-             c2, c3, c4);
+      printf("  %5g %6g %7g | %-21s | %-21s | %-21s | %-21s | %s\n", ts[i], hs[j], 100.0 * hs[j],
+             c1, c2, c3, c5, c4);
       (void)nw;
       (void)nw2;
+      (void)nw5;
     }
   }
   printf("MsFEM (seed 001 5.7.1): (a(x/eps) u')' = x^2, a = 10/(1 + 0.95 sin 2 pi y), eps = 0.025;\n"
@@ -675,6 +771,7 @@ static int oscillatory_main(int argc, char **argv) {
   const int all = strcmp(ex, "all") == 0;
   if (!all && strcmp(ex, "resonance") != 0 && strcmp(ex, "fpu") != 0 &&
       strcmp(ex, "fpu-long") != 0 && strcmp(ex, "work-precision") != 0 &&
+      strcmp(ex, "step-scan") != 0 &&
       strcmp(ex, "multiscale") != 0) {
     cli_error(CMD,
               "unknown experiment '%s': resonance, fpu, fpu-long, work-precision, multiscale or "
@@ -698,6 +795,7 @@ static int oscillatory_main(int argc, char **argv) {
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "work-precision") == 0))
     rc = experiment_work_precision(dir, !no_plot);
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "multiscale") == 0)) rc = experiment_multiscale();
+  if (rc == CLI_EXIT_OK && strcmp(ex, "step-scan") == 0) rc = experiment_step_scan(dir);
   return rc;
 }
 

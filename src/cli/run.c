@@ -143,6 +143,7 @@ static int print_json(const char *problem, const gm_scheme *sc, const gm_problem
     cJSON_AddItemToObject(root, "max_rel_discrete_energy_error",
                           cli_json_number(r->max_rel_discrete_energy_error));
     cJSON_AddNumberToObject(root, "energy_fallbacks", (double)r->energy_fallbacks);
+    cJSON_AddNumberToObject(root, "energy_unresolved_steps", (double)r->energy_unresolved);
   }
   if (r->restarted) {
     cJSON_AddStringToObject(root, "restart", o->restart);
@@ -212,8 +213,8 @@ static void print_summary(const char *problem, const gm_scheme *sc, const gm_pro
   }
   if (r->chooses_steps)
     printf("discrete energy   E_d = %.10g, max |E_d - E0|/|E0| %.3e (what %s keeps), "
-           "%zu least-squares fallbacks\n", r->discrete_energy, r->max_rel_discrete_energy_error,
-           m->name, r->energy_fallbacks);
+           "%zu least-squares fallbacks, %zu steps kept (size unresolved)\n", r->discrete_energy,
+           r->max_rel_discrete_energy_error, m->name, r->energy_fallbacks, r->energy_unresolved);
   for (size_t k = 0; k < pb->n_invariants; ++k)
     printf("%-17s max drift %.3e\n", pb->invariants[k].name,
            gm_monitor_max_invariant_drift(r->monitor, k));

@@ -239,6 +239,7 @@ int cli_simulate(const char *command, const cli_sim_config *c, cli_sim_result *r
       const double e = r->discrete_energy, d = gm_variational_max_energy_error(it);
       r->max_rel_discrete_energy_error = e != 0.0 ? d / fabs(e) : d;
       r->energy_fallbacks = gm_variational_energy_fallbacks(it);
+      r->energy_unresolved = gm_variational_unresolved_steps(it);
     }
     cli_progress_end(&progress);
     r->wall_s = now_s() - start;

@@ -3,9 +3,10 @@
  *   L = (m/2)(ȧ² + (l + a)² θ̇²) + m g (l + a) cos θ − (k/2) a²,
  * on each step [0, h] the trial functions
  *   a(τ) = P(τ) + E(τ)(α sin ωτ + β cos ωτ),   θ(τ) = T(τ),   P, T polynomials of degree n in τ/h,
- * with the envelope E = P (the seed's polynomial × (1 + a₀ sin ωt + a₁ cos ωt)) or E = 1 (the
- * additive space, the default: the seed's product space gives a Newton system that does not
- * converge on this problem, see docs/oscillatory.md); a polynomial for the slow angle; ω fixed,
+ * with the envelope E = l + P (the default: the seed's polynomial × (1 + a₀ sin ωt + a₁ cos ωt)
+ * on the radius r = l + a), E = P (the same product on the stretch a, whose Newton system does
+ * not converge on this problem) or E = 1 (the additive space), see docs/oscillatory.md; a
+ * polynomial for the slow angle; ω fixed,
  * √(k/m) by default, where the seed would add it as an unknown. Writing
  * a = P + Re(c E e^{iωτ}) with c = β − iα, every term of L is Σ_{m=0}^{2} Re(f_m(τ) e^{imωτ}) with
  * smooth f_m, and ∫_0^h f_m e^{imωτ} dτ is taken by the n_f-point Filon–Lobatto rule at κ = mωh
@@ -94,7 +95,7 @@ static void harm_axpy(size_t n, double a, const harm *x, harm *y) {
 }
 
 gm_msvi_options gm_msvi_defaults(void) {
-  gm_msvi_options o = {1.0, 9.81, 10000.0, 1.0, 0.0, 2, 3, 1};
+  gm_msvi_options o = {1.0, 9.81, 10000.0, 1.0, 0.0, 2, 3, 2, 0};
   return o;
 }
 
@@ -110,6 +111,8 @@ gm_status gm_msvi_create(const gm_msvi_options *options, gm_msvi **out, gm_error
   if (o.filon_points < 2 || o.filon_points > MSVI_MAX_NODES)
     return gm_error_set(err, GM_EINVAL, "msvi: filon_points must be 2..%d, got %zu",
                         MSVI_MAX_NODES, o.filon_points);
+  if (o.additive < 0 || o.additive > 2)
+    return gm_error_set(err, GM_EINVAL, "msvi: additive must be 0, 1 or 2, got %d", o.additive);
   if (o.omega == 0.0) o.omega = sqrt(o.k / o.m);
   if (!(o.omega > 0.0) || !isfinite(o.omega))
     return gm_error_set(err, GM_EINVAL, "msvi: omega must be positive, got %g", o.omega);
@@ -188,8 +191,10 @@ static double action(const gm_msvi *vi, const double *xi, double *grad) {
     harm a, ad, r;
     harm_zero(&a);
     harm_zero(&ad);
-    /* multiplicative: the envelope of the oscillation is P; additive: 1 */
-    const double E = vi->o.additive ? 1.0 : P, dE = vi->o.additive ? 0.0 : dP;
+    /* the envelope of the oscillation: l + P (product on the radius), P (product on the
+     * stretch) or 1 (additive) */
+    const double E = vi->o.additive == 1 ? 1.0 : (vi->o.additive == 2 ? l + P : P),
+                 dE = vi->o.additive == 1 ? 0.0 : dP;
     a.c0 = P;
     a.c1 = c * E;
     ad.c0 = dP;
@@ -197,7 +202,7 @@ static double action(const gm_msvi *vi, const double *xi, double *grad) {
     for (size_t j = 0; j < n; ++j) {
       a.d0[j] = gP[j];
       ad.d0[j] = gdP[j];
-      if (!vi->o.additive) {
+      if (vi->o.additive != 1) {
         a.d1[j] = c * gP[j];
         ad.d1[j] = c * (gdP[j] + I * w * gP[j]);
       }
@@ -251,8 +256,9 @@ static void endpoints(const gm_msvi *vi, const double *xi, double *q0, double *q
   memset(g0t, 0, n * sizeof *g0t);
   memset(g1a, 0, n * sizeof *g1a);
   memset(g1t, 0, n * sizeof *g1t);
-  const int add = vi->o.additive;
-  const double E0 = add ? 1.0 : xi[ip(0)], Eh = add ? 1.0 : Ph;
+  const int add = vi->o.additive == 1;
+  const double shift = vi->o.additive == 2 ? vi->o.l : 0.0; /* product form in r = l + a */
+  const double E0 = add ? 1.0 : shift + xi[ip(0)], Eh = add ? 1.0 : shift + Ph;
   q0[0] = xi[ip(0)] + E0 * beta;
   q0[1] = xi[it_(vi, 0)];
   g0a[ip(0)] = add ? 1.0 : 1.0 + beta;
@@ -334,7 +340,8 @@ gm_status gm_msvi_step(gm_msvi *vi, double h, double *q, double *p) {
   memcpy(vi->p0, p, sizeof vi->p0);
   const size_t n = vi->n_dof;
   double *x = vi->x;
-  const int warm = vi->warm && h == vi->h_last && memcmp(q, vi->q_end, sizeof vi->q_end) == 0 &&
+  const int warm = !(vi->o.additive != 1 && vi->o.start_from_additive) && vi->warm &&
+                   h == vi->h_last && memcmp(q, vi->q_end, sizeof vi->q_end) == 0 &&
                    memcmp(p, vi->p_end, sizeof vi->p_end) == 0;
   size_t iterations = 0;
   if (warm) {
@@ -361,6 +368,25 @@ gm_status gm_msvi_step(gm_msvi *vi, double h, double *q, double *p) {
       return gm_fail(vi->errmsg, sizeof vi->errmsg, st, "msvi: step h = %g (polynomial start): %s",
                      h, gm_newton_errmsg(vi->newton));
     }
+  }
+  if (vi->o.additive != 1 && vi->o.start_from_additive) {
+    /* a product space started from the additive space's solution of the same step:
+     * P + α sin + β cos ≈ E(α' sin + β' cos) + P with E the envelope at mid-step */
+    const int mode = vi->o.additive;
+    vi->o.additive = 1;
+    st = gm_newton_solve(vi->newton, residual, NULL, vi, x);
+    vi->o.additive = mode;
+    iterations += gm_newton_iterations(vi->newton);
+    if (st != GM_OK) {
+      vi->warm = 0;
+      return gm_fail(vi->errmsg, sizeof vi->errmsg, st, "msvi: step h = %g (additive start): %s",
+                     h, gm_newton_errmsg(vi->newton));
+    }
+    double Pmid = 0.0;
+    for (size_t j = 0; j <= vi->deg; ++j) Pmid += x[ip(j)] * pow(0.5, (double)j);
+    const double Emid = (mode == 2 ? vi->o.l : 0.0) + Pmid;
+    x[ialpha(vi)] /= Emid;
+    x[ibeta(vi)] /= Emid;
   }
   st = gm_newton_solve(vi->newton, residual, NULL, vi, x);
   vi->iterations = iterations + gm_newton_iterations(vi->newton);

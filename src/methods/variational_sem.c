@@ -34,6 +34,16 @@
 
 #define EPS 2.220446049250313e-16
 #define SEM_MAX_ITERATIONS 40
+/* the relative resolution of h below which the energy equation is not followed (see
+ * solve_with_energy) */
+#define SEM_RESOLUTION 1e-2
+/* A root of the energy equation is the continuation of the previous step only within a factor 2
+ * of it: for a symmetric L_d, f(h) ≈ c(h^p − h_prev^p) + e(h^{p+1} + h_prev^{p+1}) near h_prev,
+ * whose forward root is h_prev(1 + O(h_prev)); a root farther away is another branch, and
+ * following such jumps (the bound was 8) let vi-sem-galerkin-3 on Kepler e = 0.6 from h0 = 0.05
+ * grow its steps to 3.1 (half the period) until the DEL had no solution. */
+#define SEM_MAX_RATIO_HI 8.0
+#define SEM_MAX_RATIO_LO 0.125
 
 typedef struct {
   vi_engine e;
@@ -43,6 +53,8 @@ typedef struct {
   double h_prev;      /* the last step taken */
   double *z_prev, *dp;
   size_t fallbacks;
+  size_t unresolved;  /* steps where the energy equation did not resolve h: h_prev kept */
+  int resolve;        /* 1 while solving from the previous step (not in the fallback scan) */
   double last_energy_error;
   double max_energy_error; /* max |E_d − E| over the steps since the energy was set */
 } sem_work;
@@ -88,8 +100,12 @@ static void invalidate(gm_integrator *it) {
   }
 }
 
-/* E_d at the last evaluation; *size (if not NULL) gets Σ b_i (|L_v·V| + |L|), the scale of
- * its rounding error. */
+/* E_d at the last evaluation; *size (if not NULL) gets the scale of its rounding error,
+ * Σ b_i (|L_v|·|V| + |L| + |L_q|·|Q|): the terms of E_d and the change of L when Q, which the
+ * DEL fix only to round-off relative to |Q|, moves by one ulp. Near a turning point on a level
+ * E ≈ 0 (the pendulum released at q = π/2) |L_v·V| + |L| is 1e-5 while L = p²/2 + cos q
+ * carries the absolute rounding 1e-16 of cos q: without the |L_q|·|Q| term the stopping test
+ * asked for an E_d more exact than its arguments. */
 static gm_status discrete_energy_sized(vi_engine *e, double *energy, double *size) {
   const size_t d = e->d;
   double sum = 0.0, mag = 0.0;
@@ -97,9 +113,13 @@ static gm_status discrete_energy_sized(vi_engine *e, double *energy, double *siz
     double l, pv = 0.0;
     gm_status st = gm_vi_lagrangian_at(e, i, &l);
     if (st != GM_OK) return st;
-    for (size_t k = 0; k < d; ++k) pv += e->Lv[i * d + k] * e->V[i * d + k];
+    double cond = 0.0;
+    for (size_t k = 0; k < d; ++k) {
+      pv += e->Lv[i * d + k] * e->V[i * d + k];
+      cond += fabs(e->Lv[i * d + k] * e->V[i * d + k]) + fabs(e->Lq[i * d + k] * e->Q[i * d + k]);
+    }
     sum += e->b[i] * (pv - l);
-    mag += fabs(e->b[i]) * (fabs(pv) + fabs(l));
+    mag += fabs(e->b[i]) * (cond + fabs(l));
   }
   *energy = sum;
   if (size != NULL) *size = mag;
@@ -153,6 +173,11 @@ static gm_status solve_with_energy(gm_integrator *it, sem_work *w) {
     /* converged: the last change of h was at round-off, or the energy already is */
     if (step <= 4.0 * EPS * fabs(e->h) || fabs(ed - w->energy) <= 2.0 * EPS * fabs(w->energy))
       return GM_OK;
+    /* the starting guess (±h_prev) already solves the equation to the rounding of E_d: it is
+     * the root continuous with the previous step, and a Newton step on rounding error would
+     * only move it (a step h then −h returned 3e-12 off for vi-sem-galerkin-2 on Kepler, 2e-10
+     * for -3, instead of exactly) */
+    if (iter == 0 && fabs(ed - w->energy) <= 4.0 * EPS * size) return GM_OK;
     /* With small steps df/dh = O(h) is small and h is fixed only to ε·size/|df/dh|, far above
      * ε|h|: once the changes of h stop shrinking with E_d at its rounding level, that is the
      * root (without this, such steps were counted as least-squares fallbacks that found it). */
@@ -201,6 +226,21 @@ static gm_status solve_with_energy(gm_integrator *it, sem_work *w) {
     gm_lu_solve(sd, jac, e->piv, col); /* y = (∂R/∂z)⁻¹ ∂R/∂h = −dz/dh */
     double g = dedh;
     for (size_t k = 0; k < sd; ++k) g -= row[k] * col[k];
+    /* The energy equation fixes h only to tol/|g|: where that is coarser than SEM_RESOLUTION·|h|
+     * at the previous step (g = df/dh ≈ p c h^{p−1} → 0 where the leading energy-error
+     * coefficient c vanishes, and for order p ≥ 4 whenever c h^p nears the rounding of E_d),
+     * any h near h_prev is a root to working precision and the Newton correction is rounding
+     * error divided by a vanishing g. Such corrections are not the method's: log h is neutrally
+     * stable along the exact SEM trajectory (c_k h_k^p = E − H_k, so a perturbation of log h
+     * persists), and following them makes log h a random walk whose steps grow as h shrinks,
+     * which ends with h → 0 (the pendulum released at q = π/2, where V'' = 0 and p = 0 make
+     * c = 0: vi-sem-galerkin-2 from h0 ≤ 0.004). The root continuous with the previous step is
+     * then h_prev itself (counted: gm_variational_unresolved_steps). */
+    if (iter == 0 && w->resolve && isfinite(g) &&
+        !(SEM_RESOLUTION * fabs(g * h) >= 4.0 * EPS * size)) {
+      w->unresolved++;
+      return GM_OK;
+    }
     if (!(fabs(g) > 0.0) || !isfinite(g))
       return gm_fail(e->errmsg, GM_ERRMSG_SIZE, GM_ESINGULAR,
                      "dE_d/dh = 0: the energy equation is singular in h");
@@ -296,10 +336,12 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
     const double guess = (h < 0) == (w->h_prev < 0) ? w->h_prev : -w->h_prev;
     e->h = guess;
     starting_values(w, guess, guess == w->h_prev);
+    w->resolve = 1;
     st = solve_with_energy(it, w);
+    w->resolve = 0;
     const double ratio = e->h / guess;
     if (st == GM_ECALLBACK) return st;
-    if (st != GM_OK || !(ratio > 0.125 && ratio < 8.0)) st = least_squares_step(it, w, guess);
+    if (st != GM_OK || !(ratio > SEM_MAX_RATIO_LO && ratio < SEM_MAX_RATIO_HI)) st = least_squares_step(it, w, guess);
   }
   if (st == GM_OK) st = gm_vi_momentum_increment(e, w->dp);
   if (st == GM_OK) {
@@ -341,7 +383,7 @@ static gm_status step(gm_integrator *it, double t, double h, const double *y, do
  * values) — and the counters the run reports. */
 typedef struct {
   double energy, h_prev, last_energy_error, max_energy_error;
-  unsigned long long have_energy, fallbacks;
+  unsigned long long have_energy, fallbacks, unresolved;
 } sem_saved;
 
 static size_t state_size(const gm_integrator *it) {
@@ -352,7 +394,8 @@ static size_t state_size(const gm_integrator *it) {
 static void state_save(const gm_integrator *it, unsigned char *out) {
   const sem_work *w = it->work;
   sem_saved v = {w->energy, w->h_prev, w->last_energy_error, w->max_energy_error,
-                 (unsigned long long)w->have_energy, (unsigned long long)w->fallbacks};
+                 (unsigned long long)w->have_energy, (unsigned long long)w->fallbacks,
+                 (unsigned long long)w->unresolved};
   memcpy(out, &v, sizeof v);
   memcpy(out + sizeof v, w->z_prev, w->e.s * w->e.d * sizeof(double));
 }
@@ -367,6 +410,7 @@ static gm_status state_load(gm_integrator *it, const unsigned char *in) {
   w->max_energy_error = v.max_energy_error;
   w->have_energy = v.have_energy != 0;
   w->fallbacks = (size_t)v.fallbacks;
+  w->unresolved = (size_t)v.unresolved;
   memcpy(w->z_prev, in + sizeof v, w->e.s * w->e.d * sizeof(double));
   return GM_OK;
 }
@@ -407,4 +451,9 @@ double gm_variational_max_energy_error(const gm_integrator *it) {
 size_t gm_variational_energy_fallbacks(const gm_integrator *it) {
   const sem_work *w = sem_of(it);
   return w != NULL ? w->fallbacks : 0;
+}
+
+size_t gm_variational_unresolved_steps(const gm_integrator *it) {
+  const sem_work *w = sem_of(it);
+  return w != NULL ? w->unresolved : 0;
 }

@@ -28,6 +28,19 @@
    .reference = "Leok, thesis (2004), Sect. 2.4 and 5.2; Marsden & West, Acta Numer. 10 "     \
                 "(2001), Sect. 2.6; GNI (2006), Sect. VI.6.3"}
 
+/* Symplectic-energy-momentum with the Galerkin discrete Lagrangian of degree s (s Gauss points):
+ * the higher-order form of seed 001 §5.5 (Leok, thesis (2004), Sect. 5.5, the time step an
+ * unknown of the discrete energy equation; Kane, Marsden & Ortiz 1999 for the midpoint rule);
+ * the stepper is variational_sem.c. Order 2s (measured: tests/convergence/test_order.c). */
+#define SEM_GAUSS(s_, order_, name_)                                                          \
+  {.name = name_, .family = GM_FAMILY_VARIATIONAL, .order = (order_), .n_stages = (s_),       \
+   .flags = VI_FLAGS | GM_ENERGY_PRESERVING, .accepts = VI_ACCEPTS,                           \
+   .compute = gm_vi_gauss_tableau,                                                            \
+   .description = "symplectic-energy-momentum Galerkin, degree " #s_ ": steps chosen by the " \
+                  "energy",                                                                   \
+   .reference = "Leok, thesis (2004), Sect. 5.5 and 2.4; Kane, Marsden & Ortiz, J. Math. "    \
+                "Phys. 40 (1999) 3353"}
+
 static const double alpha_default[] = {0.25};
 
 const gm_method gm_variational_methods[] = {
@@ -69,6 +82,8 @@ const gm_method gm_variational_methods[] = {
      .description = "symplectic-energy-momentum midpoint rule: steps chosen by the energy",
      .reference = "Kane, Marsden & Ortiz, J. Math. Phys. 40 (1999) 3353; Leok, thesis (2004), "
                   "Sect. 5.5; Razafindralandy et al. (2018), Sect. 3.3"},
+    SEM_GAUSS(2, 4, "vi-sem-galerkin-2"),
+    SEM_GAUSS(3, 6, "vi-sem-galerkin-3"),
 };
 const size_t gm_n_variational_methods =
     sizeof gm_variational_methods / sizeof gm_variational_methods[0];

@@ -52,7 +52,21 @@ static void check_low_orders(const char *problem, double t_end) {
     const gm_method *m = gm_method_at(i);
     if (!test_accepts(m, tm.problem) || m->order > 4) continue;
     size_t n_fit = 0;
-    double h0, order = measure(m, &tm, t_end, &n_fit, &h0);
+    double h0, order;
+    /* Energy-momentum rows of order ≥ 4 choose their steps by E_d − H = c h^p + …, and on the
+     * pendulum released at q = π/2 c vanishes at every turning point (at p = 0 only the terms
+     * V'²V'' survive, and V''(±π/2) = 0; docs/variational.md): the steps there are set by the
+     * next terms and depend on h0 irregularly, so the errors do not follow a power law (which
+     * `geomint order pendulum --method vi-sem-galerkin-2` reports). Their order is measured on
+     * the pendulum released at q = 1 instead, where c ≠ 0 at the turning points. */
+    if ((m->flags & GM_ENERGY_PRESERVING) && m->family == GM_FAMILY_VARIATIONAL &&
+        m->order >= 4 && strcmp(problem, "pendulum") == 0) {
+      test_model generic = test_model_with("pendulum", "q1", 1.0);
+      order = measure(m, &generic, t_end, &n_fit, &h0);
+      gm_model_free(generic.model);
+    } else {
+      order = measure(m, &tm, t_end, &n_fit, &h0);
+    }
     /* Itoh–Abe's coordinate increments of a separable H with one degree of freedom are the
      * symmetric quotients (V(q') − V(q))/(q' − q), (T(p') − T(p))/(p' − p): order 2 there */
     int declared = m->order;
