@@ -176,8 +176,14 @@ static gm_status interaction_acceleration(gm_integrator *it, const double *Q) {
   ni_work *w = it->work;
   const size_t n = w->n;
   double *q = w->q, *g = w->grad, *acc = w->accel;
+  /* V is translation invariant, so the positions are taken relative to the centre of mass
+   * (Q_0 = 0): the centre of mass moves with the total momentum (far, over 10⁹ days: ~5000 au
+   * for the outer solar system), and positions about it would lose the digits of the
+   * separations that V needs. With Q_0 in, the rounding of the interaction (a difference of
+   * O(1/ε) larger terms) grew linearly in t, and the energy error like t^1.6 instead of √t
+   * (docs/celestial.md). */
   if (w->coordinates == GM_COORDINATES_JACOBI) {
-    double R[3] = {Q[0], Q[1], Q[2]}; /* R_{n−1} = centre of mass, then down (coordinates.c) */
+    double R[3] = {0, 0, 0}; /* R_{n−1} = centre of mass, then down (coordinates.c) */
     for (size_t i = n - 1; i >= 1; --i)
       for (int k = 0; k < 3; ++k) {
         R[k] -= w->m_over_eta[i] * Q[3 * i + k];
@@ -189,7 +195,7 @@ static gm_status interaction_acceleration(gm_integrator *it, const double *Q) {
     const double M = w->eta[n - 1];
     for (size_t i = 1; i < n; ++i)
       for (int k = 0; k < 3; ++k) c[k] += w->m[i] * Q[3 * i + k];
-    for (int k = 0; k < 3; ++k) q[k] = Q[k] - c[k] / M;
+    for (int k = 0; k < 3; ++k) q[k] = -c[k] / M;
     for (size_t i = 1; i < n; ++i)
       for (int k = 0; k < 3; ++k) q[3 * i + k] = Q[3 * i + k] + q[k];
   }
