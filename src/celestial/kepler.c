@@ -20,6 +20,7 @@
  * (parabolic) the Stumpff series are used, so nothing divides by β. */
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -178,11 +179,22 @@ static inline v2 v2_sqrt(v2 a) {
 #endif
 }
 
-static inline int lane_ok(v2 mu, v2 t, v2 r0, v2 eta, v2 beta, v2 s0, int j) {
-  const double b = beta[j], m = mu[j], z = b * s0[j] * s0[j];
-  return m > 0.0 && isfinite(m + t[j] + r0[j] + eta[j] + b + s0[j]) && r0[j] > 0.0 &&
-         t[j] != 0.0 && b > 0.0 && t[j] * t[j] * b * b * b < 0.09 * m * m &&
-         s0[j] * t[j] > 0.0 && z < SHORT_Z;
+typedef long long v2i __attribute__((vector_size(16)));
+
+static inline v2 v2_abs(v2 a) { return (v2)((v2i)a & (v2i){INT64_MAX, INT64_MAX}); }
+
+/* lanes (bit j) where every component of the mask is true */
+static inline int lanes(v2i mask) { return (int)(mask[0] & 1) | (int)(mask[1] & 1) << 1; }
+
+/* finite: x − x is 0, not NaN */
+static inline v2i v2_finite(v2 a) { return a - a == 0.0; }
+
+/* whether a lane takes the short path: μ > 0, all finite, r0 > 0, dt ≠ 0, elliptic,
+ * |ΔM| = |dt| β^{3/2}/μ < 0.3 (squared: no root), s0 on the side of dt, |β s0²| < SHORT_Z */
+static inline int lane_ok(v2 mu, v2 t, v2 r0, v2 eta, v2 beta, v2 s0) {
+  return lanes((mu > 0.0) & v2_finite(mu + t + r0 + eta + beta + s0) & (r0 > 0.0) & (t != 0.0) &
+               (beta > 0.0) & (t * t * beta * beta * beta < 0.09 * mu * mu) & (s0 * t > 0.0) &
+               (beta * s0 * s0 < SHORT_Z));
 }
 
 /* Short drifts of np ≤ MAX_PAIRS pairs of orbits (pair i, lane j: mu[2i+j], x0[2i+j],
@@ -215,8 +227,7 @@ static void short_pairs(size_t np, const double *mu, double dt, const double *co
     s0[i] = tr * (1.0 + tr * (-0.5 * eta[i] * ir[i] +
                               tr * (0.5 * eta[i] * eta[i] * ir[i] * ir[i] -
                                     zeta[i] * ir[i] * (1.0 / 6.0))));
-    ok[i] = lane_ok(m[i], t, r0[i], eta[i], beta[i], s0[i], 0) |
-            lane_ok(m[i], t, r0[i], eta[i], beta[i], s0[i], 1) << 1;
+    ok[i] = lane_ok(m[i], t, r0[i], eta[i], beta[i], s0[i]);
     any |= ok[i];
   }
   for (size_t i = 0; i < 2 * np; ++i) done[i] = 0;
@@ -238,8 +249,7 @@ static void short_pairs(size_t np, const double *mu, double dt, const double *co
     d[i] = -(6.0 * f * df2 - 3.0 * f * f * d2f) /
            (6.0 * df2 * df - 6.0 * f * df * d2f + f * f * d3f);
     g[i][0] = g0, g[i][1] = g1, g[i][2] = g2, g[i][3] = g3;
-    for (int j = 0; j < 2; ++j)
-      if (!(fabs(d[i][j]) <= SHORT_STEP * fabs(s[j]))) ok[i] &= ~(1 << j);
+    ok[i] &= lanes(v2_abs(d[i]) <= SHORT_STEP * v2_abs(s));
   }
   for (size_t i = 0; i < np; ++i) { /* G at s0 + d, Newton's correction, the increments */
     if (!ok[i]) continue;
@@ -255,8 +265,7 @@ static void short_pairs(size_t np, const double *mu, double dt, const double *co
     const v2 f1 = r0[i] * s1 + e * G2 + k * G3 - t;
     const v2 r1 = r0[i] + e * G1 + k * G2;
     const v2 inv_r1 = one / r1, d2 = -f1 * inv_r1;
-    for (int j = 0; j < 2; ++j)
-      if (!(fabs(d2[j]) <= 0x1p-40 * fabs(s1[j]))) ok[i] &= ~(1 << j);
+    ok[i] &= lanes(v2_abs(d2) <= 0x1p-40 * v2_abs(s1));
     const v2 n2 = G2 + d2 * G1, n1 = G1 + d2 * G0;
     /* 1/r at s1 + d2: r = r1 + d2 f''(s1) */
     const v2 ri = inv_r1 * (1.0 - d2 * (e * G0 + k * G1) * inv_r1);
@@ -268,10 +277,9 @@ static void short_pairs(size_t np, const double *mu, double dt, const double *co
       DX[c] = f_1 * X[i][c] + gg * V[i][c];
       DV[c] = fdot * X[i][c] + gdot_1 * V[i][c];
     }
+    ok[i] &= lanes(v2_finite(DX[0] + DX[1] + DX[2] + DV[0] + DV[1] + DV[2]));
     for (int j = 0; j < 2; ++j) {
-      if (!(ok[i] >> j & 1) ||
-          !isfinite(DX[0][j] + DX[1][j] + DX[2][j] + DV[0][j] + DV[1][j] + DV[2][j]))
-        continue;
+      if (!(ok[i] >> j & 1)) continue;
       for (int c = 0; c < 3; ++c) {
         dx[2 * i + j][c] = DX[c][j];
         dv[2 * i + j][c] = DV[c][j];
