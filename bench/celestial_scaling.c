@@ -1,7 +1,7 @@
 /* The error-scaling figure of docs/celestial.md: position error at t = 20 000 days of
  * Sun–Jupiter–Saturn (outer-solar-system planets=2) against the step, for the planets' real
- * masses (ε = 1) and for masses 1000 times smaller (ε = 1e-3), for wh, saba-2/4-jacobi, wh-c5
- * and aba-10-6-4. Reference: sofroniou-spaletta-10, compensated, 10 days. Writes
+ * masses (ε = 1) and for masses 1000 times smaller (ε = 1e-3), for wh, saba-2/4-jacobi, wh-c5,
+ * aba-10-6-4 and sabac-2-jacobi. Reference: sofroniou-spaletta-10, compensated, 10 days. Writes
  * DIR/celestial_scaling.json and DIR/celestial_scaling.dat, and with gnuplot on PATH
  * DIR/celestial_scaling.png. usage: bench_celestial_scaling [DIR] */
 #include <math.h>
@@ -12,8 +12,8 @@
 #include "bench_util.h"
 #include "geomint/geomint.h"
 
-static const char *const methods[] = {"wh", "saba-2-jacobi", "saba-4-jacobi", "wh-c5",
-                                      "aba-10-6-4"};
+static const char *const methods[] = {"wh",    "saba-2-jacobi", "saba-4-jacobi",
+                                      "wh-c5", "aba-10-6-4",    "sabac-2-jacobi"};
 #define N_METHODS (sizeof methods / sizeof methods[0])
 #define N_LEVELS 16
 #define T_END 20000.0
@@ -97,10 +97,10 @@ int main(int argc, char **argv) {
              "set ylabel 'relative position error at t = 20000 d'; set key top left; "
              "set grid; set yrange [1e-16:1e-3]; set key autotitle columnhead; "
              "set title 'Sun-Jupiter-Saturn, real masses (eps = 1)'; "
-             "plot for [c=2:6] '%s/celestial_scaling.dat' u 1:c w lp pt 7 ps 0.6 "
+             "plot for [c=2:7] '%s/celestial_scaling.dat' u 1:c w lp pt 7 ps 0.6 "
              "title columnhead(c), 2e-13*x**2 w l dt 2 lc 'gray' title 'slope 2'; "
              "set title 'planet masses x 1e-3 (eps = 1e-3)'; "
-             "plot for [c=7:11] '%s/celestial_scaling.dat' u 1:c w lp pt 7 ps 0.6 "
+             "plot for [c=8:13] '%s/celestial_scaling.dat' u 1:c w lp pt 7 ps 0.6 "
              "title columnhead(c), 3e-14*x**2 w l dt 2 lc 'gray' title 'slope 2', "
              "2e-22*x**4 w l dt 4 lc 'black' title 'slope 4'; unset multiplot\"",
              dir, dir, dir);

@@ -34,6 +34,7 @@ typedef struct gm_near_integrable_traits {
   gm_coordinates coordinates;
   size_t n_corrector;        /* K: stages Z(a_i, b_i), i = 1..K */
   const double *corrector_b; /* b_1..b_K (a_i = i·alpha) */
+  double sabac_g;            /* ≠ 0: Laskar–Robutel's corrector kick of SABAC_n (its g) */
 } gm_near_integrable_traits;
 const gm_near_integrable_traits *gm_near_integrable_traits_of(const struct gm_method *m);
 extern const double gm_corrector_alpha;

@@ -20,6 +20,10 @@
  * (parabolic) the Stumpff series are used, so nothing divides by β. */
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "celestial/internal.h"
 
@@ -144,6 +148,159 @@ static gm_status solve(const kepler_equation *k, double s, double lo, double hi,
   return GM_OK;
 }
 
+/* The short path: a drift with |ΔM| < 0.3 and |β s²| < SHORT_Z from the third-order start
+ * s0(t) = t/r0 − η t²/(2 r0³) + (η²/(2 r0⁵) − ζ/(6 r0⁴)) t³, whose error is small, with one
+ * evaluation of the G functions instead of an iteration. A Householder step d from s0 leaves
+ * an error ~K (d/s)⁴ s; the G functions are carried to s1 = s0 + d by their Taylor series to
+ * d⁴ (dG_k/ds = G_{k−1}, dG_0/ds = −β G_1, so the j-th derivative of G_k is G_{k−j} with
+ * G_{−1} = −β G_1, G_{−2} = −β G_0, G_{−3} = β² G_1, G_{−4} = β² G_0; with |d| ≤ SHORT_STEP
+ * |s0| the first term left out is below 1e-21 of G_k), and Kepler's equation is evaluated
+ * again from them (as accurate as a direct evaluation). A last Newton correction
+ * d2 = −f(s1)/r(s1) is applied to s and, to first order, to G and 1/r (its square is far
+ * below the ulp); that 1/r is the one the f and g functions need, so the correction costs no
+ * division. A lane fails (and gm_kepler_drift iterates) when s0 was not close enough: |d| too
+ * large, or a Newton correction not at round-off level (|d2| > 2^-40 |s1|).
+ *
+ * Two orbits at a time in the lanes of a vector of two doubles (GCC/Clang vector extensions:
+ * SSE2 on x86-64, plain scalar code elsewhere); each lane computes exactly what it would
+ * alone (no operation mixes lanes, contraction to FMA is off), so a single drift, done as a
+ * pair with itself, is bitwise the drift of the same orbit in any pair. The G functions come
+ * from 6 terms of the Stumpff series for every lane (|z| < SHORT_Z = 0.09: the first term
+ * left out, z⁶/14!, is below 1e-17 of c_2), so no lane's term count depends on the other's. */
+#define SHORT_STEP 0x1p-13
+#define SHORT_Z 0.09
+typedef double v2 __attribute__((vector_size(16)));
+
+static inline v2 v2_sqrt(v2 a) {
+#if defined(__SSE2__)
+  return (v2)_mm_sqrt_pd((__m128d)a);
+#else
+  return (v2){sqrt(a[0]), sqrt(a[1])};
+#endif
+}
+
+typedef long long v2i __attribute__((vector_size(16)));
+
+static inline v2 v2_abs(v2 a) { return (v2)((v2i)a & (v2i){INT64_MAX, INT64_MAX}); }
+
+/* lanes (bit j) where every component of the mask is true */
+static inline int lanes(v2i mask) { return (int)(mask[0] & 1) | (int)(mask[1] & 1) << 1; }
+
+/* finite: x − x is 0, not NaN */
+static inline v2i v2_finite(v2 a) { return a - a == 0.0; }
+
+/* whether a lane takes the short path: μ > 0, all finite, r0 > 0, dt ≠ 0, elliptic,
+ * |ΔM| = |dt| β^{3/2}/μ < 0.3 (squared: no root), s0 on the side of dt, |β s0²| < SHORT_Z */
+static inline int lane_ok(v2 mu, v2 t, v2 r0, v2 eta, v2 beta, v2 s0) {
+  return lanes((mu > 0.0) & v2_finite(mu + t + r0 + eta + beta + s0) & (r0 > 0.0) & (t != 0.0) &
+               (beta > 0.0) & (t * t * beta * beta * beta < 0.09 * mu * mu) & (s0 * t > 0.0) &
+               (beta * s0 * s0 < SHORT_Z));
+}
+
+/* Short drifts of np ≤ MAX_PAIRS pairs of orbits (pair i, lane j: mu[2i+j], x0[2i+j],
+ * v0[2i+j] → dx[2i+j], dv[2i+j]) by dt. Sets done[2i+j] to whether that drift was done (the
+ * others' outputs are untouched). The work goes phase by phase over all pairs: each phase is
+ * a latency chain (square root and division, the Horner series, the Householder division,
+ * the Newton division), so the pairs of one phase run side by side; a pair at a time was
+ * measured slower than scalar code (latency-bound). */
+#define MAX_PAIRS 8
+static void short_pairs(size_t np, const double *mu, double dt, const double *const *x0,
+                        const double *const *v0, double *const *dx, double *const *dv,
+                        int *done) {
+  v2 X[MAX_PAIRS][3], V[MAX_PAIRS][3], m[MAX_PAIRS], r0[MAX_PAIRS], eta[MAX_PAIRS],
+      beta[MAX_PAIRS], zeta[MAX_PAIRS], ir[MAX_PAIRS], s0[MAX_PAIRS], d[MAX_PAIRS],
+      g[MAX_PAIRS][4];
+  const v2 t = {dt, dt}, one = {1.0, 1.0};
+  int ok[MAX_PAIRS], any = 0;
+  for (size_t i = 0; i < np; ++i) { /* r0, η, β, ζ, 1/r0 and the start */
+    for (int c = 0; c < 3; ++c) {
+      X[i][c] = (v2){x0[2 * i][c], x0[2 * i + 1][c]};
+      V[i][c] = (v2){v0[2 * i][c], v0[2 * i + 1][c]};
+    }
+    m[i] = (v2){mu[2 * i], mu[2 * i + 1]};
+    r0[i] = v2_sqrt(X[i][0] * X[i][0] + X[i][1] * X[i][1] + X[i][2] * X[i][2]);
+    eta[i] = X[i][0] * V[i][0] + X[i][1] * V[i][1] + X[i][2] * V[i][2];
+    beta[i] = 2.0 * m[i] / r0[i] - (V[i][0] * V[i][0] + V[i][1] * V[i][1] + V[i][2] * V[i][2]);
+    zeta[i] = m[i] - beta[i] * r0[i];
+    ir[i] = one / r0[i];
+    const v2 tr = t * ir[i];
+    s0[i] = tr * (1.0 + tr * (-0.5 * eta[i] * ir[i] +
+                              tr * (0.5 * eta[i] * eta[i] * ir[i] * ir[i] -
+                                    zeta[i] * ir[i] * (1.0 / 6.0))));
+    ok[i] = lane_ok(m[i], t, r0[i], eta[i], beta[i], s0[i]);
+    any |= ok[i];
+  }
+  for (size_t i = 0; i < 2 * np; ++i) done[i] = 0;
+  if (!any) return;
+  for (size_t i = 0; i < np; ++i) { /* G at s0 and Householder's fourth-order step */
+    const v2 z = beta[i] * s0[i] * s0[i];
+    v2 c2 = inverse_factorial[10] * one, c3 = inverse_factorial[11] * one;
+    for (int j = 4; j >= 0; --j) {
+      c2 = inverse_factorial[2 * j] - z * c2;
+      c3 = inverse_factorial[2 * j + 1] - z * c3;
+    }
+    const v2 s = s0[i], b = beta[i], e = eta[i], k = zeta[i];
+    const v2 g2 = s * s * c2, g3 = s * s * s * c3, g1 = s - b * g3, g0 = 1.0 - b * g2;
+    const v2 f = r0[i] * s + e * g2 + k * g3 - t;
+    const v2 df = r0[i] + e * g1 + k * g2;
+    const v2 d2f = e * g0 + k * g1;
+    const v2 d3f = k * g0 - e * b * g1;
+    const v2 df2 = df * df;
+    d[i] = -(6.0 * f * df2 - 3.0 * f * f * d2f) /
+           (6.0 * df2 * df - 6.0 * f * df * d2f + f * f * d3f);
+    g[i][0] = g0, g[i][1] = g1, g[i][2] = g2, g[i][3] = g3;
+    ok[i] &= lanes(v2_abs(d[i]) <= SHORT_STEP * v2_abs(s));
+  }
+  for (size_t i = 0; i < np; ++i) { /* G at s0 + d, Newton's correction, the increments */
+    if (!ok[i]) continue;
+    const v2 b = beta[i], e = eta[i], k = zeta[i], dd = d[i];
+    const v2 g0 = g[i][0], g1 = g[i][1], g2 = g[i][2], g3 = g[i][3];
+    const v2 e1 = -b * g1, e2 = -b * g0, e3 = -b * e1, e4 = -b * e2;
+    const v2 h2 = 0.5 * dd, h3 = dd * (1.0 / 3.0), h4 = 0.25 * dd;
+    const v2 G3 = g3 + dd * (g2 + h2 * (g1 + h3 * (g0 + h4 * e1)));
+    const v2 G2 = g2 + dd * (g1 + h2 * (g0 + h3 * (e1 + h4 * e2)));
+    const v2 G1 = g1 + dd * (g0 + h2 * (e1 + h3 * (e2 + h4 * e3)));
+    const v2 G0 = g0 + dd * (e1 + h2 * (e2 + h3 * (e3 + h4 * e4)));
+    const v2 s1 = s0[i] + dd;
+    const v2 f1 = r0[i] * s1 + e * G2 + k * G3 - t;
+    const v2 r1 = r0[i] + e * G1 + k * G2;
+    const v2 inv_r1 = one / r1, d2 = -f1 * inv_r1;
+    ok[i] &= lanes(v2_abs(d2) <= 0x1p-40 * v2_abs(s1));
+    const v2 n2 = G2 + d2 * G1, n1 = G1 + d2 * G0;
+    /* 1/r at s1 + d2: r = r1 + d2 f''(s1) */
+    const v2 ri = inv_r1 * (1.0 - d2 * (e * G0 + k * G1) * inv_r1);
+    /* dx = (f − 1) x0 + g v0, dv = ḟ x0 + (ġ − 1) v0 */
+    const v2 f_1 = -m[i] * n2 * ir[i], gg = r0[i] * n1 + e * n2;
+    const v2 fdot = -m[i] * n1 * ri * ir[i], gdot_1 = -m[i] * n2 * ri;
+    v2 DX[3], DV[3];
+    for (int c = 0; c < 3; ++c) {
+      DX[c] = f_1 * X[i][c] + gg * V[i][c];
+      DV[c] = fdot * X[i][c] + gdot_1 * V[i][c];
+    }
+    ok[i] &= lanes(v2_finite(DX[0] + DX[1] + DX[2] + DV[0] + DV[1] + DV[2]));
+    for (int j = 0; j < 2; ++j) {
+      if (!(ok[i] >> j & 1)) continue;
+      for (int c = 0; c < 3; ++c) {
+        dx[2 * i + j][c] = DX[c][j];
+        dv[2 * i + j][c] = DV[c][j];
+      }
+      done[2 * i + j] = 1;
+    }
+  }
+}
+
+/* dx = (f − 1) x0 + g v0, dv = ḟ x0 + (ġ − 1) v0 from the G functions at the root */
+static inline void increments(double mu, const kepler_equation *k, double ir, double ri,
+                              const double g[4], const double *x0, const double *v0, double *dx,
+                              double *dv) {
+  const double f_1 = -mu * g[2] * ir, gg = k->r0 * g[1] + k->eta * g[2];
+  const double fdot = -mu * g[1] * ri * ir, gdot_1 = -mu * g[2] * ri;
+  for (int i = 0; i < 3; ++i) {
+    dx[i] = f_1 * x0[i] + gg * v0[i];
+    dv[i] = fdot * x0[i] + gdot_1 * v0[i];
+  }
+}
+
 gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double v0[3],
                           double dx[3], double dv[3]) {
   if (x0 == NULL || v0 == NULL || dx == NULL || dv == NULL) return GM_EINVAL;
@@ -161,6 +318,13 @@ gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double
   k.zeta = mu - k.beta * r0;
   k.t = dt;
   double lo, hi, s0;
+  { /* the short path, as a pair with itself */
+    const double mus[2] = {mu, mu}, *xs[2] = {x0, x0}, *vs[2] = {v0, v0};
+    double sdx[3], sdv[3], *dxs[2] = {dx, sdx}, *dvs[2] = {dv, sdv};
+    int done[2];
+    short_pairs(1, mus, dt, xs, vs, dxs, dvs, done);
+    if (done[0]) return GM_OK;
+  }
   /* s(t) = t/r0 − η t²/(2 r0³) + (η²/(2 r0⁵) − ζ/(6 r0⁴)) t³ + O(t⁴), the inverse of
    * t(s) = r0 s + η s²/2 + ζ s³/6 + O(s⁴): the start for drifts short against the orbit */
   const double ir = 1.0 / r0, tr = dt * ir;
@@ -199,96 +363,35 @@ gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double
   gm_status st = solve(&k, s0, lo, hi, &s, g);
   if (st != GM_OK) return st;
   const double ri = 1.0 / (r0 + k.eta * g[1] + k.zeta * g[2]);
-  const double f_1 = -mu * g[2] * ir, gg = r0 * g[1] + k.eta * g[2];
-  const double fdot = -mu * g[1] * ri * ir, gdot_1 = -mu * g[2] * ri;
-  for (int i = 0; i < 3; ++i) {
-    dx[i] = f_1 * x0[i] + gg * v0[i];
-    dv[i] = fdot * x0[i] + gdot_1 * v0[i];
-  }
+  increments(mu, &k, ir, ri, g, x0, v0, dx, dv);
   if (!isfinite(dx[0] + dx[1] + dx[2] + dv[0] + dv[1] + dv[2])) return GM_EDOMAIN;
   return GM_OK;
 }
 
 /* Drifts of n independent orbits by the same dt (x, v, dx, dv: n 3-vectors, borrowed): each
- * result is the one of gm_kepler_drift, but short elliptic drifts (|mean anomaly| < 0.3, the
- * drifts of a splitting method) run their iterations side by side, so the processor overlaps
- * the latency chains of the different orbits (divisions, the series of the G functions). Any
- * orbit that is not such a drift, or whose iteration would leave its bracket, is handed to
- * gm_kepler_drift. */
-#define BATCH 16
+ * result is bitwise the one of gm_kepler_drift. Short drifts (the drifts of a splitting
+ * method) go through short_pairs two orbits at a time; any other orbit, or one whose start was
+ * not close enough, is handed to gm_kepler_drift. */
 gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const double *x,
                                const double *v, double *dx, double *dv) {
-  for (size_t base = 0; base < n; base += BATCH) {
-    const size_t m = n - base < BATCH ? n - base : BATCH;
-    kepler_equation k[BATCH];
-    double s[BATCH], g[BATCH][4], ir[BATCH], hi[BATCH];
-    int active[BATCH], scalar[BATCH];
-    size_t n_active = 0;
-    for (size_t j = 0; j < m; ++j) {
-      const double *x0 = x + 3 * (base + j), *v0 = v + 3 * (base + j);
-      const double r0 = sqrt(dot3(x0, x0)), mj = mu[base + j];
-      k[j].r0 = r0;
-      k[j].eta = dot3(x0, v0);
-      k[j].beta = 2.0 * mj / r0 - dot3(v0, v0);
-      k[j].zeta = mj - k[j].beta * r0;
-      k[j].t = dt;
-      ir[j] = 1.0 / r0;
-      const double b = k[j].beta; /* |M| = |dt| β^{3/2}/μ < 0.3, squared: no root, no division */
-      scalar[j] = !(b > 0.0) || !(dt * dt * b * b * b < 0.09 * mj * mj) || !(r0 > 0.0) ||
-                  !isfinite(r0 + k[j].eta) || dt == 0.0 || !(mj > 0.0);
-      active[j] = !scalar[j];
-      if (scalar[j]) continue;
-      const double tr = dt * ir[j];
-      s[j] = tr * (1.0 + tr * (-0.5 * k[j].eta * ir[j] +
-                               tr * (0.5 * k[j].eta * k[j].eta * ir[j] * ir[j] -
-                                     k[j].zeta * ir[j] / 6.0)));
-      hi[j] = 4.0 * GM_PI * GM_PI / b; /* s² < s_period² = (2π)²/β bounds the root; lo = 0 */
-      ++n_active;
+  for (size_t base = 0; base < n; base += 2 * MAX_PAIRS) {
+    const size_t m = n - base < 2 * MAX_PAIRS ? n - base : 2 * MAX_PAIRS;
+    const double *xs[2 * MAX_PAIRS], *vs[2 * MAX_PAIRS];
+    double mus[2 * MAX_PAIRS], *dxs[2 * MAX_PAIRS], *dvs[2 * MAX_PAIRS], spare[6];
+    int done[2 * MAX_PAIRS];
+    for (size_t j = 0; j < m + (m & 1); ++j) {
+      const size_t i = base + (j < m ? j : m - 1); /* an odd last orbit pairs with itself */
+      mus[j] = mu[i];
+      xs[j] = x + 3 * i;
+      vs[j] = v + 3 * i;
+      dxs[j] = j < m ? dx + 3 * i : spare;
+      dvs[j] = j < m ? dv + 3 * i : spare + 3;
     }
-    for (int iter = 0; iter < 8 && n_active > 0; ++iter)
-      for (size_t j = 0; j < m; ++j) {
-        if (!active[j]) continue;
-        const kepler_equation *kj = &k[j];
-        double *gj = g[j];
-        stumpff_g(kj->beta, s[j], gj);
-        const double f = kj->r0 * s[j] + kj->eta * gj[2] + kj->zeta * gj[3] - kj->t;
-        const double df = kj->r0 + kj->eta * gj[1] + kj->zeta * gj[2];
-        const double d2f = kj->eta * gj[0] + kj->zeta * gj[1];
-        const double d3f = kj->zeta * gj[0] - kj->eta * kj->beta * gj[1];
-        const double df2 = df * df;
-        const double d = -(6.0 * f * df2 - 3.0 * f * f * d2f) /
-                         (6.0 * df2 * df - 6.0 * f * df * d2f + f * f * d3f);
-        const double next = s[j] + d;
-        if (!(next * next < hi[j]) || !(next * dt > 0.0)) { /* leaves the bracket */
-          active[j] = 0, scalar[j] = 1, --n_active;
-          continue;
-        }
-        if (fabs(d) <= 4.0 * DBL_EPSILON * fabs(s[j])) { /* as in solve() */
-          const double g0 = gj[0], g1 = gj[1], g2 = gj[2];
-          gj[3] += d * g2;
-          gj[2] += d * g1;
-          gj[1] += d * g0;
-          gj[0] -= kj->beta * d * g1;
-          active[j] = 0, --n_active;
-        }
-        s[j] = next;
-      }
+    short_pairs((m + 1) / 2, mus, dt, xs, vs, dxs, dvs, done);
     for (size_t j = 0; j < m; ++j) {
-      const size_t i = base + j;
-      if (active[j]) scalar[j] = 1; /* not converged in 8 rounds: the bracketed solver */
-      if (scalar[j]) {
-        gm_status st = gm_kepler_drift(mu[i], dt, x + 3 * i, v + 3 * i, dx + 3 * i, dv + 3 * i);
-        if (st != GM_OK) return st;
-        continue;
-      }
-      const double *x0 = x + 3 * i, *v0 = v + 3 * i, *gj = g[j];
-      const double ri = 1.0 / (k[j].r0 + k[j].eta * gj[1] + k[j].zeta * gj[2]);
-      const double f_1 = -mu[i] * gj[2] * ir[j], gg = k[j].r0 * gj[1] + k[j].eta * gj[2];
-      const double fdot = -mu[i] * gj[1] * ri * ir[j], gdot_1 = -mu[i] * gj[2] * ri;
-      for (int c = 0; c < 3; ++c) {
-        dx[3 * i + c] = f_1 * x0[c] + gg * v0[c];
-        dv[3 * i + c] = fdot * x0[c] + gdot_1 * v0[c];
-      }
+      if (done[j]) continue;
+      gm_status st = gm_kepler_drift(mus[j], dt, xs[j], vs[j], dxs[j], dvs[j]);
+      if (st != GM_OK) return st;
     }
   }
   return GM_OK;

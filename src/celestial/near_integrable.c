@@ -48,6 +48,7 @@ typedef struct {
   double *Qo, *Vo, *cQo, *cVo; /* output work: the state corrected for output */
   double *q, *grad, *accel;  /* barycentric positions, ∇V, kick acceleration */
   double *Qd, *Vd;           /* the increments of a drift */
+  double *Qs, *As;           /* SABAC: perturbed positions, the acceleration at Q */
   double pending, pending_save; /* Kepler drift time owed by the last step (see internal_step) */
   int loaded;          /* Q, V hold the state of it->y (through C⁻¹) */
   double h_loaded;     /* the step the corrector of the loaded state was made for */
@@ -96,7 +97,7 @@ static gm_status init(gm_integrator *it) {
   w->fsal = w->n_ops > 1 && w->ops[0].kick && w->ops[w->n_ops - 1].kick;
   double **arrays[] = {&w->Q,  &w->V,   &w->cQ,    &w->cV,      &w->Q_save, &w->V_save,
                        &w->cQ_save, &w->cV_save, &w->Qo, &w->Vo, &w->cQo, &w->cVo,
-                       &w->q,  &w->grad, &w->accel, &w->Qd, &w->Vd};
+                       &w->q,  &w->grad, &w->accel, &w->Qd, &w->Vd, &w->Qs, &w->As};
   for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
     if ((*arrays[k] = calloc(3 * n, sizeof(double))) == NULL) return GM_ENOMEM;
   w->m = malloc(7 * n * sizeof(double));
@@ -123,7 +124,7 @@ static void release(gm_integrator *it) {
   if (w == NULL) return;
   double *arrays[] = {w->Q,       w->V,       w->cQ, w->cV, w->Q_save, w->V_save, w->cQ_save,
                       w->cV_save, w->Qo,      w->Vo, w->cQo, w->cVo,   w->q,      w->grad,
-                      w->accel,   w->m,       w->Qd, w->Vd};
+                      w->accel,   w->m,       w->Qd, w->Vd, w->Qs, w->As};
   for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k) free(arrays[k]);
   free(w->ops);
   free(w);
@@ -176,8 +177,14 @@ static gm_status interaction_acceleration(gm_integrator *it, const double *Q) {
   ni_work *w = it->work;
   const size_t n = w->n;
   double *q = w->q, *g = w->grad, *acc = w->accel;
+  /* V is translation invariant, so the positions are taken relative to the centre of mass
+   * (Q_0 = 0): the centre of mass moves with the total momentum (far, over 10⁹ days: ~5000 au
+   * for the outer solar system), and positions about it would lose the digits of the
+   * separations that V needs. With Q_0 in, the rounding of the interaction (a difference of
+   * O(1/ε) larger terms) grew linearly in t, and the energy error like t^1.6 instead of √t
+   * (docs/celestial.md). */
   if (w->coordinates == GM_COORDINATES_JACOBI) {
-    double R[3] = {Q[0], Q[1], Q[2]}; /* R_{n−1} = centre of mass, then down (coordinates.c) */
+    double R[3] = {0, 0, 0}; /* R_{n−1} = centre of mass, then down (coordinates.c) */
     for (size_t i = n - 1; i >= 1; --i)
       for (int k = 0; k < 3; ++k) {
         R[k] -= w->m_over_eta[i] * Q[3 * i + k];
@@ -189,7 +196,7 @@ static gm_status interaction_acceleration(gm_integrator *it, const double *Q) {
     const double M = w->eta[n - 1];
     for (size_t i = 1; i < n; ++i)
       for (int k = 0; k < 3; ++k) c[k] += w->m[i] * Q[3 * i + k];
-    for (int k = 0; k < 3; ++k) q[k] = Q[k] - c[k] / M;
+    for (int k = 0; k < 3; ++k) q[k] = -c[k] / M;
     for (size_t i = 1; i < n; ++i)
       for (int k = 0; k < 3; ++k) q[3 * i + k] = Q[3 * i + k] + q[k];
   }
@@ -265,6 +272,44 @@ static gm_status corrector(gm_integrator *it, double *Q, double *V, double h, in
   return st;
 }
 
+/* SABAC (Laskar & Robutel, Celest. Mech. Dyn. Astr. 80 (2001) 39, §4): the ε² h² term of
+ * SABA_n is g h² {{A,B},B}, and {{A,B},B} = K(Q) = Σ_i |∇_i B|²/m'_i depends on positions only
+ * (A = Σ |P_i|²/(2m'_i) + Kepler terms, B = the interaction), so its flow is a kick:
+ * P ← P − τ ∇K, ∇K = 2 H_B M⁻¹ ∇B. With the kick's acceleration a = −M⁻¹ ∇B, M⁻¹ ∇K = 2 Da[a]
+ * (the derivative of a along a), taken here by a central difference of a over ±δ a, δ such
+ * that no planet moves by more than 1e-5 of its distance (the difference's error, ~1e-10 and
+ * ~u/(1e-5 ε) relative, is far below the term itself, which is O(ε² h³)). SABAC_n =
+ * C½ SABA_n C½ with C½ = exp(−(g/2) h³ L_K); the internal state is C½⁻¹ of the output, so a step
+ * is SABA_n after one full corrector (the two halves of consecutive steps merged), and the
+ * output applies C½. V += sign · factor · g h³ · 2 Da[a]; sign checked against the measured
+ * ε² h² term (tests/convergence/test_celestial_scaling.c). Three force evaluations. */
+static gm_status sabac_kick(gm_integrator *it, double *Q, double *V, double *cV, double h,
+                            double factor) {
+  ni_work *w = it->work;
+  const size_t n = w->n;
+  gm_status st = interaction_acceleration(it, Q);
+  if (st != GM_OK) return st;
+  memcpy(w->As, w->accel, 3 * n * sizeof(double));
+  double delta = INFINITY;
+  for (size_t i = 1; i < n; ++i) {
+    const double *a = w->As + 3 * i, *x = Q + 3 * i;
+    const double na = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    const double nx = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    if (na > 0.0) delta = fmin(delta, 1e-5 * nx / na);
+  }
+  if (!isfinite(delta)) return GM_OK; /* no interaction: nothing to correct */
+  const double coef = factor * w->traits->sabac_g * h * h * h * 2.0 / (2.0 * delta);
+  for (int side = 0; side < 2; ++side) {
+    memcpy(w->Qs, Q, 3 * n * sizeof(double));
+    for (size_t i = 3; i < 3 * n; ++i) w->Qs[i] += (side ? -delta : delta) * w->As[i];
+    if ((st = interaction_acceleration(it, w->Qs)) != GM_OK) return st;
+    for (size_t i = 3; i < 3 * n; ++i)
+      add(&V[i], cV ? &cV[i] : NULL, (side ? -coef : coef) * w->accel[i]);
+  }
+  w->force_valid = 0;
+  return GM_OK;
+}
+
 /* Internal state from the barycentric y: coordinates, then C⁻¹ (made for step h). */
 static gm_status load(gm_integrator *it, const double *y, double h) {
   ni_work *w = it->work;
@@ -282,8 +327,9 @@ static gm_status load(gm_integrator *it, const double *y, double h) {
   w->pending = 0.0;
   w->h_loaded = h;
   w->loaded = 1;
-  if (w->traits->n_corrector > 0) {
-    gm_status st = corrector(it, w->Q, w->V, h, 1);
+  if (w->traits->n_corrector > 0 || w->traits->sabac_g != 0.0) {
+    gm_status st = w->traits->sabac_g != 0.0 ? sabac_kick(it, w->Q, w->V, NULL, h, -0.5)
+                                             : corrector(it, w->Q, w->V, h, 1);
     if (st != GM_OK) {
       w->loaded = 0;
       return st;
@@ -306,8 +352,13 @@ static gm_status flush(gm_integrator *it) {
 static gm_status change_step(gm_integrator *it, double h) {
   ni_work *w = it->work;
   gm_status st = flush(it);
-  if (st == GM_OK) st = corrector(it, w->Q, w->V, w->h_loaded, 0);
-  if (st == GM_OK) st = corrector(it, w->Q, w->V, h, 1);
+  if (w->traits->sabac_g != 0.0) {
+    if (st == GM_OK) st = sabac_kick(it, w->Q, w->V, NULL, w->h_loaded, 0.5);
+    if (st == GM_OK) st = sabac_kick(it, w->Q, w->V, NULL, h, -0.5);
+  } else {
+    if (st == GM_OK) st = corrector(it, w->Q, w->V, w->h_loaded, 0);
+    if (st == GM_OK) st = corrector(it, w->Q, w->V, h, 1);
+  }
   if (st != GM_OK) {
     w->loaded = 0;
     return st;
@@ -332,10 +383,12 @@ static gm_status output(gm_integrator *it, double *y_out) {
     if (st != GM_OK) return st;
   }
   if (w->traits->n_corrector > 0) {
-    const int valid = w->force_valid;
     gm_status st = corrector(it, w->Qo, w->Vo, w->h_loaded, 0);
     w->force_valid = 0;
-    (void)valid;
+    if (st != GM_OK) return st;
+  }
+  if (w->traits->sabac_g != 0.0) {
+    gm_status st = sabac_kick(it, w->Qo, w->Vo, NULL, w->h_loaded, 0.5);
     if (st != GM_OK) return st;
   }
   for (size_t i = 0; i < n; ++i)
@@ -358,6 +411,11 @@ static gm_status internal_step(gm_integrator *it, double h) {
   ni_work *w = it->work;
   double *cQ = it->compensated ? w->cQ : NULL, *cV = it->compensated ? w->cV : NULL;
   size_t k = 0, end = w->n_ops;
+  if (w->traits->sabac_g != 0.0) { /* the two half correctors between steps, merged */
+    gm_status st = flush(it);
+    if (st == GM_OK) st = sabac_kick(it, w->Q, w->V, cV, h, 1.0);
+    if (st != GM_OK) return st;
+  }
   if (w->fsal && w->force_valid) { /* the first kick's acceleration is the last one's */
     for (size_t i = 3; i < 3 * w->n; ++i)
       add(&w->V[i], cV ? &cV[i] : NULL, w->ops[0].coef * h * w->accel[i]);
@@ -403,7 +461,8 @@ static void restore(ni_work *w) {
 static gm_status prepare(gm_integrator *it, const double *y, double h) {
   ni_work *w = it->work;
   if (!w->loaded) return load(it, y, h);
-  if (w->traits->n_corrector > 0 && h != w->h_loaded) return change_step(it, h);
+  if ((w->traits->n_corrector > 0 || w->traits->sabac_g != 0.0) && h != w->h_loaded)
+    return change_step(it, h);
   return GM_OK;
 }
 

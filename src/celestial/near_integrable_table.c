@@ -105,6 +105,9 @@ static const double aba104_b[] = {
 #define SBAB_DESC(n_, e_)                                                                     \
   "SBAB_" #n_ " of Kepler drifts and interaction kicks in Jacobi coordinates: error "          \
   "O(eps h^" #e_ " + eps^2 h^2)"
+#define SABAC_DESC(n_, e_)                                                                    \
+  "SABAC_" #n_ ": SABA_" #n_ " in Jacobi coordinates with Laskar-Robutel's corrector kick of "  \
+  "the eps^2 h^2 term (3 force evaluations a step): error O(eps h^" #e_ " + eps^2 h^4)"
 #define WHC_DESC(k_)                                                                          \
   "Wisdom-Holman in Jacobi coordinates with the order-" #k_ " symplectic corrector at "       \
   "output times"
@@ -129,6 +132,10 @@ const gm_method gm_near_integrable_methods[] = {
     ROW("wh-c7", 2, 0, gm_saba_tableau, WHC_DESC(7), WHT_REF),
     ROW("wh-c11", 2, 0, gm_saba_tableau, WHC_DESC(11), WHT_REF),
     ROW("wh-c17", 2, 0, gm_saba_tableau, WHC_DESC(17), WHT_REF),
+    ROW("sabac-1-jacobi", 2, GM_SYMMETRIC, gm_saba_tableau, SABAC_DESC(1, 2), LR_REF),
+    ROW("sabac-2-jacobi", 3, GM_SYMMETRIC, gm_saba_tableau, SABAC_DESC(2, 4), LR_REF),
+    ROW("sabac-3-jacobi", 4, GM_SYMMETRIC, gm_saba_tableau, SABAC_DESC(3, 6), LR_REF),
+    ROW("sabac-4-jacobi", 5, GM_SYMMETRIC, gm_saba_tableau, SABAC_DESC(4, 8), LR_REF),
     ROW_LITERAL("aba-10-4", 8, aba104_a, aba104_b,
                 "Blanes et al. ABA(10,4), 7 kicks, Jacobi: error O(eps h^10 + eps^2 h^4)",
                 BCF_REF),
@@ -146,23 +153,29 @@ const size_t gm_n_near_integrable_methods =
 
 #define J GM_COORDINATES_JACOBI
 static const gm_near_integrable_traits traits[] = {
-    {J, 0, NULL},
-    {GM_COORDINATES_DEMOCRATIC_HELIOCENTRIC, 0, NULL},
-    {J, 0, NULL},
-    {J, 0, NULL},
-    {J, 0, NULL},
-    {J, 0, NULL},
-    {J, 0, NULL},
-    {J, 0, NULL},
-    {J, 0, NULL},
-    {J, 1, corrector3_b},
-    {J, 2, corrector5_b},
-    {J, 3, corrector7_b},
-    {J, 5, corrector11_b},
-    {J, 8, corrector17_b},
-    {J, 0, NULL},
-    {J, 0, NULL},
-    {J, 0, NULL},
+    {J, 0, NULL, 0.0},
+    {GM_COORDINATES_DEMOCRATIC_HELIOCENTRIC, 0, NULL, 0.0},
+    {J, 0, NULL, 0.0},
+    {J, 0, NULL, 0.0},
+    {J, 0, NULL, 0.0},
+    {J, 0, NULL, 0.0},
+    {J, 0, NULL, 0.0},
+    {J, 0, NULL, 0.0},
+    {J, 0, NULL, 0.0},
+    {J, 1, corrector3_b, 0.0},
+    {J, 2, corrector5_b, 0.0},
+    {J, 3, corrector7_b, 0.0},
+    {J, 5, corrector11_b, 0.0},
+    {J, 8, corrector17_b, 0.0},
+    /* SABAC_n: g_n of Laskar & Robutel (2001), §4: 1/12, (2 − √3)/24, (54 − 13√15)/648 and
+     * the printed value for n = 4 (the ε² h² coefficient g h² {{A,B},B} of SABA_n) */
+    {J, 0, NULL, 1.0 / 12.0},
+    {J, 0, NULL, 0.01116454968463011276968973577058865137738},
+    {J, 0, NULL, 0.005634593363122809402267823769797538671562},
+    {J, 0, NULL, 0.003396775048208601331532157783492144},
+    {J, 0, NULL, 0.0},
+    {J, 0, NULL, 0.0},
+    {J, 0, NULL, 0.0},
 };
 _Static_assert(sizeof traits / sizeof traits[0] ==
                    sizeof gm_near_integrable_methods / sizeof gm_near_integrable_methods[0],

@@ -105,6 +105,23 @@ static void check_planets(int planets) {
       cr_expect_geq(wh_small / small, 30, "planets=%d %s: only %.1f times better than wh",
                     planets, second[k], wh_small / small);
   }
+  /* SABAC_n (Laskar & Robutel's corrector kick of the ε² h² term): at ε = 1, where SABA_n is
+   * ε² h², SABAC_2 is h^4 (its ε h^4 and ε² h^4 terms) over h = 80 .. 33 days, and every
+   * SABAC_n with n ≥ 2 is at least 100 times more accurate than SABA_n at 20.48 days */
+  {
+    double p = h_slope(&e0, "sabac-2-jacobi", 80, 1.25, 5);
+    printf("planets=%d sabac-2-jacobi: error ~ h^%.2f (eps = 1, h = 80..33)\n", planets, p);
+    cr_expect(fabs(p - 4) <= 0.3, "planets=%d sabac-2-jacobi: h^%.2f", planets, p);
+    const char *saba[] = {"saba-2-jacobi", "saba-3-jacobi", "saba-4-jacobi"};
+    const char *sabac[] = {"sabac-2-jacobi", "sabac-3-jacobi", "sabac-4-jacobi"};
+    for (size_t k = 0; k < 3; ++k) {
+      double a = error(&e0, saba[k], 20.48), b = error(&e0, sabac[k], 20.48);
+      printf("planets=%d %s: error %.2e at h = 20.48, eps = 1 (%s: %.2e, %.0f times more)\n",
+             planets, sabac[k], b, saba[k], a, a / b);
+      cr_expect_geq(a / b, 100, "planets=%d %s: only %.1f times better than %s", planets,
+                    sabac[k], a / b, saba[k]);
+    }
+  }
   /* Blanes et al.'s (10,4), (8,6,4), (10,6,4): their ε² terms are h^4 and h^6, so at ε = 1
    * they are 1e4-1e6 times below saba-4 at 100 days, at a few times its cost per step; their
    * exponents sit too close to round-off here to be fitted (docs/celestial.md) */

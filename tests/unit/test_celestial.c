@@ -101,7 +101,7 @@ static int count_calls(void *ctx, size_t step, double t, const double *y) {
 
 Test(celestial, observation_does_not_change_the_run) {
   test_model tm = test_model_make("outer-solar-system");
-  const char *names[] = {"wh", "wh-c11", "sbab-3-jacobi", "wh-dh"};
+  const char *names[] = {"wh", "wh-c11", "sbab-3-jacobi", "wh-dh", "sabac-2-jacobi"};
   for (size_t k = 0; k < sizeof names / sizeof names[0]; ++k) {
     const gm_method *m = gm_method_find(names[k]);
     gm_integrator *a = test_integrator(m, tm.problem, tm.t0, tm.y0);
@@ -202,7 +202,8 @@ Test(celestial, kick_quadrature_orders) {
               {"saba-4-jacobi", 8}, {"sbab-1-jacobi", 2}, {"sbab-2-jacobi", 4}, {"sbab-3-jacobi", 6},
               {"sbab-4-jacobi", 8}, {"wh-c3", 2},         {"wh-c5", 2},         {"wh-c7", 2},
               {"wh-c11", 2},        {"wh-c17", 2},        {"aba-10-4", 10},     {"aba-8-6-4", 8},
-              {"aba-10-6-4", 10}};
+              {"aba-10-6-4", 10},   {"sabac-1-jacobi", 2}, {"sabac-2-jacobi", 4},
+              {"sabac-3-jacobi", 6}, {"sabac-4-jacobi", 8}};
   size_t checked = 0;
   for (size_t r = 0; r < sizeof rows / sizeof rows[0]; ++r) {
     const gm_method *m = gm_method_find(rows[r].name);
