@@ -439,6 +439,11 @@ typedef struct gm_mesh_maxwell_options {
                            each must be <= the face's local limit */
   int allow_negative_stars; /* non-zero: accept a mesh that is not well-centred (⋆_ε or ⋆_ν
                                entries <= 0 on the interior); default 0: refuse */
+  int avi_levels;       /* AVI: non-zero rounds each face's step down to Δt_min 2^k (Δt_min the
+                           smallest face step, k >= 0 the largest integer that does), so the
+                           faces fall into few groups of equal steps; default 0: the steps as
+                           given. Either way the faces with bitwise equal steps form one group,
+                           and the event heap holds groups, not faces. */
 } gm_mesh_maxwell_options;
 
 gm_mesh_maxwell_options gm_mesh_maxwell_defaults(void);
@@ -513,6 +518,8 @@ gm_status gm_mesh_maxwell_advance_to(gm_mesh_maxwell *s, double t);
 
 /* Counts of face updates (B) and edge updates (D) done so far. */
 void gm_mesh_maxwell_update_counts(const gm_mesh_maxwell *s, size_t *faces, size_t *edges);
+/* AVI: the number of groups of faces with equal steps (one heap entry each); 0 for the leapfrog. */
+size_t gm_mesh_maxwell_avi_groups(const gm_mesh_maxwell *s);
 
 typedef struct gm_mesh_maxwell_energy {
   double electric; /* ½ Eᵀ ⋆_ε E */
