@@ -124,7 +124,7 @@ int main(int argc, char **argv) {
   const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
   if (gm_mesh_rectangle(0, 1, 0, 0.7, N, ny, GM_DIAGONAL_ACUTE, &m, &err) != GM_OK ||
       gm_mesh_complex(m, &cx, &err) != GM_OK || gm_geometry_create(cx, NULL, &g, &err) != GM_OK ||
-      gm_mesh_bcc(lo, hi, N3, N3, N3, &m3, &err) != GM_OK ||
+      gm_mesh_bcc(lo, hi, N3, N3, N3, 0, &m3, &err) != GM_OK ||
       gm_mesh_complex(m3, &cx3, &err) != GM_OK ||
       gm_geometry_create(cx3, NULL, &g3, &err) != GM_OK) {
     fprintf(stderr, "%s\n", err.message);

@@ -80,7 +80,7 @@ static inline mm_fixture mm_bcc_jittered(size_t n, double jitter, uint64_t seed)
   mm_fixture f = {0};
   gm_error err = {{0}};
   const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
-  cr_assert_eq(gm_mesh_bcc(lo, hi, n, n, n, &f.mesh, &err), GM_OK, "%s", err.message);
+  cr_assert_eq(gm_mesh_bcc(lo, hi, n, n, n, 0, &f.mesh, &err), GM_OK, "%s", err.message);
   for (size_t i = 0; jitter > 0.0 && i < 3 * f.mesh->n_vertices; ++i)
     f.mesh->x[i] += jitter / (double)n * mm_rand(&seed);
   mm_fixture_finish(&f);

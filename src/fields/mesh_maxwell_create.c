@@ -18,6 +18,7 @@ gm_mesh_maxwell_options gm_mesh_maxwell_defaults(void) {
   o.avi_fraction = 0.1;
   o.face_dt = NULL;
   o.allow_negative_stars = 0;
+  o.avi_levels = 1;
   return o;
 }
 

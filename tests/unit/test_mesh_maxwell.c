@@ -203,9 +203,25 @@ Test(mesh_maxwell, bcc_mesh_is_well_centred) {
   mm_fixture_free(&f);
   gm_mesh *m = NULL;
   const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
-  cr_assert_eq(gm_mesh_bcc(lo, hi, 1, 4, 4, &m, &err), GM_EINVAL);
+  cr_assert_eq(gm_mesh_bcc(lo, hi, 1, 4, 4, 0, &m, &err), GM_EINVAL);
   cr_assert(strstr(err.message, "out of range") != NULL, "%s", err.message);
   cr_assert_null(m);
   const double bad[3] = {1, 0, 1};
-  cr_assert_eq(gm_mesh_bcc(lo, bad, 3, 3, 3, &m, &err), GM_EINVAL);
+  cr_assert_eq(gm_mesh_bcc(lo, bad, 3, 3, 3, 0, &m, &err), GM_EINVAL);
+  /* filled: the tetrahedra tile the box (total volume 1 × 0.8 × 0.6, none inverted) */
+  const double box[3] = {1, 0.8, 0.6};
+  cr_assert_eq(gm_mesh_bcc(lo, box, 5, 4, 3, 1, &m, &err), GM_OK, "%s", err.message);
+  gm_complex *cx = NULL;
+  gm_geometry *g = NULL;
+  cr_assert_eq(gm_mesh_complex(m, &cx, &err), GM_OK, "%s", err.message);
+  cr_assert_eq(gm_geometry_create(cx, NULL, &g, &err), GM_OK, "%s", err.message);
+  cr_assert_eq(gm_geometry_inverted_count(g), 0);
+  double total = 0.0;
+  const double *v3 = gm_geometry_primal_volumes(g, 3);
+  for (size_t T = 0; T < gm_complex_count(cx, 3); ++T) total += v3[T];
+  cr_assert_float_eq(total, 0.48, 1e-13);
+  cr_assert_eq(gm_complex_boundary_count(cx, 2), 2 * 4 * (20 + 12 + 15));
+  gm_geometry_free(g);
+  gm_complex_free(cx);
+  gm_mesh_free(m);
 }
