@@ -425,7 +425,8 @@ typedef enum gm_mesh_maxwell_star {
                                 well-centred mesh */
   GM_MESH_STAR_WHITNEY = 1   /* Whitney (Galerkin) mass matrices (Bossavit 1988): ⋆_ε = ε M_1
                                 solved by CHOLMOD (factorized once at create), ⋆_ν = M_2 / μ;
-                                any mesh; uniform ε and μ only; leapfrog only */
+                                any mesh; ε and μ per cell (mass matrices
+                                weighted cell by cell); leapfrog only */
 } gm_mesh_maxwell_star;
 
 typedef struct gm_mesh_maxwell_options {

@@ -195,13 +195,21 @@ done:
   return lambda;
 }
 
-/* The Whitney stars: ε M_1 on the interior edges (CHOLMOD, once) and M_2 / μ. */
-static gm_status build_whitney(gm_mesh_maxwell *s, double eps, double mu, gm_error *err) {
-  gm_status st = gm_geometry_whitney_mass(s->g, 1, &s->M1_full);
-  if (st == GM_OK) st = gm_geometry_whitney_mass(s->g, 2, &s->M2);
+/* The Whitney stars with materials per cell: M_1^ε = Σ_T ε_T ∫_T φ_e·φ_e' on the interior edges
+ * (CHOLMOD, once) and M_2^ν = Σ_T μ_T⁻¹ ∫_T φ_σ·φ_σ' (Bossavit 1988: the Galerkin Hodge stars
+ * are the mass matrices of the Whitney forms weighted by the material). */
+static gm_status build_whitney(gm_mesh_maxwell *s, const double *eps, const double *mu,
+                               gm_error *err) {
+  double *inv_mu = NULL;
+  if (mu) {
+    inv_mu = malloc(s->nt * sizeof(double));
+    if (!inv_mu) return gm_error_set(err, GM_ENOMEM, "out of memory");
+    for (size_t T = 0; T < s->nt; ++T) inv_mu[T] = 1.0 / mu[T];
+  }
+  gm_status st = gm_geometry_whitney_mass_weighted(s->g, 1, eps, &s->M1_full);
+  if (st == GM_OK) st = gm_geometry_whitney_mass_weighted(s->g, 2, inv_mu, &s->M2);
+  free(inv_mu);
   if (st != GM_OK) return gm_error_set(err, st, "mesh maxwell: Whitney mass matrices failed");
-  gm_csr_scale(s->M1_full, eps);
-  gm_csr_scale(s->M2, 1.0 / mu);
   size_t *map = malloc(s->ne * sizeof(size_t));
   s->interior = malloc((s->ne ? s->ne : 1) * sizeof(size_t));
   if (!map || !s->interior) { free(map); return gm_error_set(err, GM_ENOMEM, "out of memory"); }
@@ -309,14 +317,7 @@ gm_status gm_mesh_maxwell_create(const gm_geometry *g, const double *epsilon, co
       gm_mesh_maxwell_free(s);
       return gm_error_set(err, GM_EUNSUPPORTED, "mesh maxwell: the AVI needs the diagonal star");
     }
-    for (size_t T = 1; T < nt; ++T)
-      if ((epsilon && epsilon[T] != epsilon[0]) || (mu && mu[T] != mu[0])) {
-        gm_mesh_maxwell_free(s);
-        return gm_error_set(err, GM_EUNSUPPORTED,
-                            "mesh maxwell: the Whitney star takes uniform epsilon and mu only "
-                            "(cell %zu differs)", T);
-      }
-    st = build_whitney(s, epsilon && nt ? epsilon[0] : 1.0, mu && nt ? mu[0] : 1.0, err);
+    st = build_whitney(s, epsilon, mu, err);
     if (st != GM_OK) { gm_mesh_maxwell_free(s); return st; }
     for (size_t e = 0; e < s->ne; ++e) s->inv_eps[e] = s->bnd_e[e] ? 0.0 : 1.0; /* the mask */
   } else if (o.star != GM_MESH_STAR_DIAGONAL) {

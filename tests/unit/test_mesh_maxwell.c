@@ -80,11 +80,17 @@ Test(mesh_maxwell, bad_materials_and_steps) {
   gm_mesh_maxwell_free(s);
   o.face_dt = fdt;
   expect_create(f.g, NULL, NULL, &o, GM_EINVAL, "local CFL");
-  /* Whitney star: uniform materials only, leapfrog only */
+  /* Whitney star: materials per cell accepted (and checked), leapfrog only */
   o = gm_mesh_maxwell_defaults();
   o.star = GM_MESH_STAR_WHITNEY;
   eps[2] = 2.0;
-  expect_create(f.g, eps, NULL, &o, GM_EUNSUPPORTED, "uniform");
+  gm_mesh_maxwell *w = NULL;
+  gm_error werr = {{0}};
+  cr_assert_eq(gm_mesh_maxwell_create(f.g, eps, NULL, &o, &w, &werr), GM_OK, "%s", werr.message);
+  gm_mesh_maxwell_free(w);
+  eps[2] = -1.0;
+  expect_create(f.g, eps, NULL, &o, GM_EINVAL, "epsilon of cell 2");
+  eps[2] = 1.0;
   o.scheme = GM_MESH_AVI;
   expect_create(f.g, NULL, NULL, &o, GM_EUNSUPPORTED, "diagonal star");
   free(eps); free(mu); free(E); free(B); free(fdt);
