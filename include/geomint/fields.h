@@ -522,6 +522,23 @@ gm_status gm_mesh_maxwell_advance_to(gm_mesh_maxwell *s, double t);
 
 /* Counts of face updates (B) and edge updates (D) done so far. */
 void gm_mesh_maxwell_update_counts(const gm_mesh_maxwell *s, size_t *faces, size_t *edges);
+/* Maxwell on the 2+1 prismal spacetime complex K × {t_0 .. t_N} of a 2-D triangle mesh as one
+ * sparse solve (seed 000 §3.4.4): F = E∧dt + B on the primal 2-cells, the κ-signed diagonal
+ * Lorentzian star (+ on spatial faces, − on extruded ones; circumcentric, so the mesh must be
+ * well-centred as for gm_mesh_maxwell_create), dF = 0 on every prism and dG = 𝒥 on the interior
+ * spatial edges at t_1..t_{N−1}, with the initial data B0 (nf) and E_half (ne, E at Δt/2), PEC
+ * walls. J: NULL or N × ne currents (row n at t_n; row 0 unused). Out: B ((N+1) × nf, B at t_n)
+ * and E (N × ne, E at t_n + Δt/2). res (may be NULL): the residuals of dF = 0 on every prism and
+ * of dG = 𝒥 on the interior spatial edges (Ampère) and on the temporal edges of interior
+ * vertices (Gauss, not imposed), relative to the largest term. Allocates. */
+typedef struct gm_mesh_maxwell_spacetime_residuals {
+  double dF, dG_ampere, dG_gauss;
+  size_t unknowns;
+} gm_mesh_maxwell_spacetime_residuals;
+gm_status gm_mesh_maxwell_spacetime(const gm_geometry *g, const double *epsilon, const double *mu,
+                                    size_t n_slabs, double dt, const double *B0,
+                                    const double *E_half, const double *J, double *B, double *E,
+                                    gm_mesh_maxwell_spacetime_residuals *res, gm_error *err);
 /* AVI: the number of groups of faces with equal steps (one heap entry each); 0 for the leapfrog. */
 size_t gm_mesh_maxwell_avi_groups(const gm_mesh_maxwell *s);
 
