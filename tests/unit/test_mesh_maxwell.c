@@ -84,10 +84,10 @@ Test(mesh_maxwell, bad_materials_and_steps) {
   o = gm_mesh_maxwell_defaults();
   o.star = GM_MESH_STAR_WHITNEY;
   eps[2] = 2.0;
-  gm_mesh_maxwell *w = NULL;
+  gm_mesh_maxwell *wm = NULL;
   gm_error werr = {{0}};
-  cr_assert_eq(gm_mesh_maxwell_create(f.g, eps, NULL, &o, &w, &werr), GM_OK, "%s", werr.message);
-  gm_mesh_maxwell_free(w);
+  cr_assert_eq(gm_mesh_maxwell_create(f.g, eps, NULL, &o, &wm, &werr), GM_OK, "%s", werr.message);
+  gm_mesh_maxwell_free(wm);
   eps[2] = -1.0;
   expect_create(f.g, eps, NULL, &o, GM_EINVAL, "epsilon of cell 2");
   eps[2] = 1.0;
