@@ -115,7 +115,7 @@ int main(int argc, char **argv) {
   const size_t N = argc > 2 ? (size_t)atol(argv[2]) : 200;
   const size_t steps = argc > 3 ? (size_t)atol(argv[3]) : 200;
   const size_t N3 = argc > 4 ? (size_t)atol(argv[4]) : 44;
-  const size_t steps3 = argc > 5 ? (size_t)atol(argv[5]) : 20;
+  const size_t steps3 = argc > 5 ? (size_t)atol(argv[5]) : 10;
   gm_error err = {{0}};
   gm_mesh *m = NULL, *m3 = NULL;
   gm_complex *cx = NULL, *cx3 = NULL;
