@@ -447,7 +447,7 @@ typedef struct gm_mesh_maxwell_options {
                            equal steps form one group, and the event heap holds groups, not
                            faces. Default by measurement (docs/maxwell-mesh.md): per face update
                            the levels cost 2.3-2.9x a leapfrog face update, distinct steps
-                           40-130x (heap and scattered access). */
+                           40-140x (heap and scattered access). */
 } gm_mesh_maxwell_options;
 
 gm_mesh_maxwell_options gm_mesh_maxwell_defaults(void);
