@@ -138,6 +138,10 @@ gm_status gm_geometry_hodge_star_matrix(const gm_geometry *g, size_t k, int inve
 double gm_geometry_dual_hodge_star(const gm_geometry *g, size_t k, size_t i);
 /* Galerkin Hodge star: the Whitney mass matrix M_k[σ,τ] = ∫ φ_σ · φ_τ (Bossavit 1988). */
 gm_status gm_geometry_whitney_mass(const gm_geometry *g, size_t k, gm_csr **out);
+/* The same with a weight per top simplex (cell_weight[T], borrowed; NULL: 1), e.g. ε_T for
+ * M_1^ε[σ,τ] = Σ_T ε_T ∫_T φ_σ · φ_τ (materials constant per cell). */
+gm_status gm_geometry_whitney_mass_weighted(const gm_geometry *g, size_t k,
+                                            const double *cell_weight, gm_csr **out);
 
 /* ---- operators --------------------------------------------------------------------------- */
 

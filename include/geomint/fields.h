@@ -425,7 +425,8 @@ typedef enum gm_mesh_maxwell_star {
                                 well-centred mesh */
   GM_MESH_STAR_WHITNEY = 1   /* Whitney (Galerkin) mass matrices (Bossavit 1988): ⋆_ε = ε M_1
                                 solved by CHOLMOD (factorized once at create), ⋆_ν = M_2 / μ;
-                                any mesh; uniform ε and μ only; leapfrog only */
+                                any mesh; ε and μ per cell (mass matrices
+                                weighted cell by cell); leapfrog only */
 } gm_mesh_maxwell_star;
 
 typedef struct gm_mesh_maxwell_options {
@@ -439,6 +440,14 @@ typedef struct gm_mesh_maxwell_options {
                            each must be <= the face's local limit */
   int allow_negative_stars; /* non-zero: accept a mesh that is not well-centred (⋆_ε or ⋆_ν
                                entries <= 0 on the interior); default 0: refuse */
+  int avi_levels;       /* AVI: non-zero (default 1) rounds each face's step down to Δt_min 2^k
+                           (Δt_min the smallest face step, k >= 0 the largest integer that
+                           does), so the faces fall into few groups of equal steps; 0: the
+                           steps as given (seed 000 Fig. 3.6). Either way the faces with bitwise
+                           equal steps form one group, and the event heap holds groups, not
+                           faces. Default by measurement (docs/maxwell-mesh.md): per face update
+                           the levels cost 2.3-2.9x a leapfrog face update, distinct steps
+                           40-140x (heap and scattered access). */
 } gm_mesh_maxwell_options;
 
 gm_mesh_maxwell_options gm_mesh_maxwell_defaults(void);
@@ -513,6 +522,25 @@ gm_status gm_mesh_maxwell_advance_to(gm_mesh_maxwell *s, double t);
 
 /* Counts of face updates (B) and edge updates (D) done so far. */
 void gm_mesh_maxwell_update_counts(const gm_mesh_maxwell *s, size_t *faces, size_t *edges);
+/* Maxwell on the 2+1 prismal spacetime complex K × {t_0 .. t_N} of a 2-D triangle mesh as one
+ * sparse solve (seed 000 §3.4.4): F = E∧dt + B on the primal 2-cells, the κ-signed diagonal
+ * Lorentzian star (+ on spatial faces, − on extruded ones; circumcentric, so the mesh must be
+ * well-centred as for gm_mesh_maxwell_create), dF = 0 on every prism and dG = 𝒥 on the interior
+ * spatial edges at t_1..t_{N−1}, with the initial data B0 (nf) and E_half (ne, E at Δt/2), PEC
+ * walls. J: NULL or N × ne currents (row n at t_n; row 0 unused). Out: B ((N+1) × nf, B at t_n)
+ * and E (N × ne, E at t_n + Δt/2). res (may be NULL): the residuals of dF = 0 on every prism and
+ * of dG = 𝒥 on the interior spatial edges (Ampère) and on the temporal edges of interior
+ * vertices (Gauss, not imposed), relative to the largest term. Allocates. */
+typedef struct gm_mesh_maxwell_spacetime_residuals {
+  double dF, dG_ampere, dG_gauss;
+  size_t unknowns;
+} gm_mesh_maxwell_spacetime_residuals;
+gm_status gm_mesh_maxwell_spacetime(const gm_geometry *g, const double *epsilon, const double *mu,
+                                    size_t n_slabs, double dt, const double *B0,
+                                    const double *E_half, const double *J, double *B, double *E,
+                                    gm_mesh_maxwell_spacetime_residuals *res, gm_error *err);
+/* AVI: the number of groups of faces with equal steps (one heap entry each); 0 for the leapfrog. */
+size_t gm_mesh_maxwell_avi_groups(const gm_mesh_maxwell *s);
 
 typedef struct gm_mesh_maxwell_energy {
   double electric; /* ½ Eᵀ ⋆_ε E */

@@ -62,6 +62,15 @@ gm_status gm_mesh_box(const double lo[3], const double hi[3], size_t nx, size_t 
 /* Annulus r_in < r < r_out: n_radial + 1 rings of n_angular vertices, consecutive rings
  * staggered by half an angular step (2 n_radial n_angular triangles, acute when the radial step
  * exceeds half the angular step). */
+/* Body-centred cubic tetrahedra on the nx×ny×nz cube grid of the box (each count >= 2): the
+ * octahedron around every interior face, cut in four around the segment joining the two cube
+ * centres (4 tetrahedra per interior face). Well-centred (positive circumcentric stars) when the
+ * cells are cubes. fill = 0: the domain is the box minus the square pyramids on its boundary
+ * faces; fill != 0: those pyramids are added, four tetrahedra each around the segment from the
+ * cube centre to the square's centre (a new vertex), and the mesh is the box; it is then not
+ * well-centred along the box's edges and corners (Whitney star). */
+gm_status gm_mesh_bcc(const double lo[3], const double hi[3], size_t nx, size_t ny, size_t nz,
+                      int fill, gm_mesh **out, gm_error *err);
 gm_status gm_mesh_annulus(double r_in, double r_out, size_t n_radial, size_t n_angular,
                           gm_mesh **out, gm_error *err);
 /* Sphere of the given radius: an icosahedron whose triangles are split into 4, `subdivisions`

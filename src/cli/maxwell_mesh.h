@@ -6,4 +6,10 @@
  * run, 2 bad input). */
 int cli_maxwell_mesh(int argc, char **argv);
 
+/* Seed 000 experiment E5 on the Gmsh box cavity `mesh` (borrowed); see maxwell_mesh_e5.c. */
+#include <stdint.h>
+#include "geomint/mesh.h"
+int cli_maxwell_mesh_e5(const gm_mesh *mesh, const char *out_dir, double t_end, uint64_t seed,
+                        double f_max, double fraction);
+
 #endif

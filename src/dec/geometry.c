@@ -476,6 +476,11 @@ static double det_small(size_t m, double a[3][3]) {
 }
 
 gm_status gm_geometry_whitney_mass(const gm_geometry *g, size_t k, gm_csr **out) {
+  return gm_geometry_whitney_mass_weighted(g, k, NULL, out);
+}
+
+gm_status gm_geometry_whitney_mass_weighted(const gm_geometry *g, size_t k,
+                                            const double *cell_weight, gm_csr **out) {
   if (g == NULL || out == NULL || k > g->cx->n) return GM_EINVAL;
   *out = NULL;
   const gm_complex *cx = g->cx;
@@ -510,6 +515,7 @@ gm_status gm_geometry_whitney_mass(const gm_geometry *g, size_t k, gm_csr **out)
     gm_complex_local_faces(cx, T, k, idx);
     const double vol = g->primal[n][T], c = vol / (double)((n + 1) * (n + 2));
     const double o = k == n ? cx->orient[T] : 1.0;
+    const double wT = cell_weight ? cell_weight[T] : 1.0; /* material of the cell */
     for (size_t si = 0; si < nl; ++si)
       for (size_t ti = 0; ti < nl; ++ti) {
         size_t sv[GM_LOCAL_MAX], tv[GM_LOCAL_MAX], q = 0, r = 0;
@@ -534,7 +540,7 @@ gm_status gm_geometry_whitney_mass(const gm_geometry *g, size_t k, gm_csr **out)
           }
         rows[w] = idx[si];
         cols[w] = idx[ti];
-        vals[w++] = kf * kf * sum * o * o;
+        vals[w++] = kf * kf * sum * o * o * wT;
       }
   }
   if (st == GM_OK) st = gm_csr_from_triplets(cx->count[k], cx->count[k], w, rows, cols, vals, out, NULL);

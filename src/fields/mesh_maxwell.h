@@ -36,6 +36,9 @@ struct gm_mesh_maxwell {
   gm_mesh_maxwell_options opt;
   const gm_csr *d0, *d1, *d2; /* borrowed from cx; d2 NULL in 2-D */
   gm_csr *d1t;                /* owned: d1ᵀ (edges × faces) */
+  gm_csr *curl_h;             /* owned, diagonal star only: d1ᵀ ⋆_ν with the rows of PEC edges
+                                 zeroed, so Ampère is one gather pass over B (no H pass, no
+                                 mask branch) */
   double *eps_star;  /* ⋆_ε per edge */
   double *inv_eps;   /* 1/⋆_ε on interior edges, 0 on boundary edges (the PEC mask) */
   double *nu_star;   /* ⋆_ν per face */
@@ -69,10 +72,15 @@ struct gm_mesh_maxwell {
   double *tau_f;    /* last update time of each face */
   double *B0;       /* B at t_0: B_σ(t) = B0_σ + (d₁ A(t))_σ */
   double *face_dt;  /* per-face step */
-  size_t *k_f;      /* events done per face */
-  struct mm_event { double t; size_t f; } *heap; /* binary min-heap of (next time, face),
+  /* groups: faces with bitwise equal steps; the faces of group g are
+     group_face[group_start[g] .. group_start[g+1]) in ascending order */
+  size_t n_groups;
+  size_t *group_start, *group_face;
+  double *group_dt;
+  size_t *k_g;      /* events done per group */
+  struct mm_event { double t; size_t g; } *heap; /* binary min-heap of (next time, group),
                                                      keys inline for locality; next time of
-                                                     a face = (k_f + 1) face_dt */
+                                                     a group = (k_g + 1) group_dt */
   size_t heap_n;
   double sample_dt, next_sample;
   size_t n_samples;
@@ -83,6 +91,7 @@ struct gm_mesh_maxwell {
 gm_status mm_probe_record(gm_mesh_maxwell *s, double t, const double *B);
 gm_status mm_observe(gm_mesh_maxwell *s, size_t counter);
 void mm_heap_build(gm_mesh_maxwell *s);
+gm_status mm_groups_build(gm_mesh_maxwell *s); /* allocates the groups and the heap */
 /* H = ⋆_ν B (nf values); E = ⋆_ε⁻¹ D on interior edges, 0 on PEC edges (ne values). */
 void mm_apply_nu(const gm_mesh_maxwell *s, const double *B, double *H);
 void mm_solve_eps(const gm_mesh_maxwell *s, const double *D, double *E);

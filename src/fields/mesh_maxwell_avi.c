@@ -14,16 +14,21 @@
  *                                                        interval)
  *   τ_σ ← t, next event at t_σ^{k+1}.
  * B is stored relative to B(t_0) so that no vector potential of the initial B is needed.
- * Events come from a binary min-heap allocated at create time; nothing here allocates. */
+ * Faces with bitwise equal steps form a group whose events share their times; the binary
+ * min-heap (allocated at create time) holds groups, so one heap operation serves a whole group
+ * and the faces of a group are swept in ascending order like a leapfrog half-step (with equal
+ * steps everywhere there is one group and the scheme is the leapfrog's order of operations).
+ * Nothing here allocates after create. */
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "core/internal.h"
 #include "fields/mesh_maxwell.h"
 
 static int heap_less(const mm_event *a, const mm_event *b) {
-  return a->t < b->t || (a->t == b->t && a->f < b->f); /* ties: lower face first */
+  return a->t < b->t || (a->t == b->t && a->g < b->g); /* ties: the group of smaller step first */
 }
 
 static void heap_down(gm_mesh_maxwell *s, size_t i) {
@@ -40,39 +45,89 @@ static void heap_down(gm_mesh_maxwell *s, size_t i) {
   h[i] = x;
 }
 
+typedef struct face_key { double dt; size_t f; } face_key;
+
+static int face_key_cmp(const void *pa, const void *pb) {
+  const face_key *a = pa, *b = pb;
+  if (a->dt != b->dt) return a->dt < b->dt ? -1 : 1;
+  return a->f < b->f ? -1 : a->f > b->f;
+}
+
+/* Groups of faces with bitwise equal steps (ascending step, faces ascending inside a group) and
+ * the heap of their next times. At create time only. */
+gm_status mm_groups_build(gm_mesh_maxwell *s) {
+  face_key *k = malloc((s->nf ? s->nf : 1) * sizeof *k);
+  s->group_face = malloc((s->nf ? s->nf : 1) * sizeof(size_t));
+  s->group_start = malloc((s->nf + 1) * sizeof(size_t));
+  s->group_dt = malloc((s->nf ? s->nf : 1) * sizeof(double));
+  s->k_g = calloc(s->nf ? s->nf : 1, sizeof(size_t));
+  s->heap = malloc((s->nf ? s->nf : 1) * sizeof(mm_event));
+  if (!k || !s->group_face || !s->group_start || !s->group_dt || !s->k_g || !s->heap) {
+    free(k);
+    return GM_ENOMEM;
+  }
+  size_t n = 0;
+  for (size_t f = 0; f < s->nf; ++f) /* no interior edge: B_σ never changes, no events */
+    if (isfinite(s->face_dt[f])) k[n++] = (face_key){s->face_dt[f], f};
+  qsort(k, n, sizeof *k, face_key_cmp);
+  s->n_groups = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (i == 0 || k[i].dt != k[i - 1].dt) {
+      s->group_start[s->n_groups] = i;
+      s->group_dt[s->n_groups++] = k[i].dt;
+    }
+    s->group_face[i] = k[i].f;
+  }
+  s->group_start[s->n_groups] = n;
+  free(k);
+  mm_heap_build(s);
+  return GM_OK;
+}
+
 void mm_heap_build(gm_mesh_maxwell *s) {
   s->heap_n = 0;
-  for (size_t f = 0; f < s->nf; ++f) {
-    if (!isfinite(s->face_dt[f])) continue; /* no interior edge: B_σ never changes */
-    s->heap[s->heap_n].t = s->face_dt[f];
-    s->heap[s->heap_n++].f = f;
+  for (size_t g = 0; g < s->n_groups; ++g) {
+    s->heap[s->heap_n].t = s->group_dt[g];
+    s->heap[s->heap_n++].g = g;
   }
   for (size_t i = s->heap_n / 2; i-- > 0;) heap_down(s, i);
 }
 
-static void avi_event(gm_mesh_maxwell *s, size_t f, double t) {
-  const gm_csr *d1 = s->d1;
-  double b = s->B0[f];
-  for (size_t p = d1->row_start[f]; p < d1->row_start[f + 1]; ++p) {
-    const size_t e = d1->col[p];
-    s->A[e] -= s->E[e] * (t - s->tau_e[e]);
-    s->tau_e[e] = t;
-    b += d1->val[p] * s->A[e];
+/* The events of the faces of one group at time t, in ascending face order. */
+static void avi_group_event(gm_mesh_maxwell *s, size_t g, double t) {
+  const size_t *restrict rs = s->d1->row_start, *restrict col = s->d1->col;
+  const double *restrict val = s->d1->val, *restrict nu = s->nu_star, *restrict ie = s->inv_eps;
+  const double *restrict B0 = s->B0;
+  double *restrict A = s->A, *restrict tau_e = s->tau_e, *restrict E = s->E, *restrict D = s->D;
+  double *restrict B = s->B, *restrict tau_f = s->tau_f;
+  size_t edge_updates = 0;
+  const size_t *faces = s->group_face;
+  for (size_t i = s->group_start[g]; i < s->group_start[g + 1]; ++i) {
+    const size_t f = faces[i];
+    double b = B0[f];
+    for (size_t p = rs[f]; p < rs[f + 1]; ++p) {
+      const size_t e = col[p];
+      A[e] -= E[e] * (t - tau_e[e]);
+      tau_e[e] = t;
+      b += val[p] * A[e];
+    }
+    B[f] = b;
+    const double hw = nu[f] * b * (t - tau_f[f]);
+    for (size_t p = rs[f]; p < rs[f + 1]; ++p) {
+      const size_t e = col[p];
+      if (ie[e] == 0.0) continue; /* PEC edge */
+      D[e] += val[p] * hw;
+      E[e] = ie[e] * D[e];
+      ++edge_updates;
+    }
+    tau_f[f] = t;
   }
-  s->B[f] = b;
-  const double h = s->nu_star[f] * b, w = t - s->tau_f[f];
-  for (size_t p = d1->row_start[f]; p < d1->row_start[f + 1]; ++p) {
-    const size_t e = d1->col[p];
-    if (s->inv_eps[e] == 0.0) continue; /* PEC edge */
-    s->D[e] += d1->val[p] * h * w;
-    s->E[e] = s->inv_eps[e] * s->D[e];
-    ++s->edge_updates;
-  }
-  s->tau_f[f] = t;
-  ++s->face_updates;
-  ++s->step;
+  const size_t nfg = s->group_start[g + 1] - s->group_start[g];
+  s->edge_updates += edge_updates;
+  s->face_updates += nfg;
+  s->step += nfg;
   s->t = t;
-  s->heap[0].t = (double)(++s->k_f[f] + 1) * s->face_dt[f]; /* f is the top: re-key, sift */
+  s->heap[0].t = (double)(++s->k_g[g] + 1) * s->group_dt[g]; /* g is the top: re-key, sift */
   heap_down(s, 0);
 }
 
@@ -121,13 +176,13 @@ gm_status mm_avi_advance_to(gm_mesh_maxwell *s, double t) {
   }
   const int sampling = s->n_probe || s->n_obs;
   while (s->heap_n && s->heap[0].t <= t) {
-    const size_t f = s->heap[0].f;
+    const size_t g = s->heap[0].g;
     const double te = s->heap[0].t;
     while (sampling && s->next_sample < te) {
       if ((st = avi_sample(s, s->next_sample)) != GM_OK) return st;
       s->next_sample = (double)(s->n_samples + 1) * s->sample_dt;
     }
-    avi_event(s, f, te);
+    avi_group_event(s, g, te);
   }
   while (sampling && s->next_sample <= t) {
     if ((st = avi_sample(s, s->next_sample)) != GM_OK) return st;

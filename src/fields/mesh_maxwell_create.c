@@ -18,12 +18,14 @@ gm_mesh_maxwell_options gm_mesh_maxwell_defaults(void) {
   o.avi_fraction = 0.1;
   o.face_dt = NULL;
   o.allow_negative_stars = 0;
+  o.avi_levels = 1;
   return o;
 }
 
 void gm_mesh_maxwell_free(gm_mesh_maxwell *s) {
   if (!s) return;
   gm_csr_free(s->d1t);
+  gm_csr_free(s->curl_h);
   free(s->eps_star); free(s->inv_eps); free(s->nu_star);
   free(s->E); free(s->D); free(s->B); free(s->rho);
   free(s->work_f); free(s->work_e); free(s->face_limit); free(s->work_v); free(s->mu_cell);
@@ -34,8 +36,8 @@ void gm_mesh_maxwell_free(gm_mesh_maxwell *s) {
   for (size_t i = 0; i < s->n_probe; ++i) { free(s->probe[i].t); free(s->probe[i].v); }
   free(s->probe);
   free(s->obs);
-  free(s->A); free(s->tau_e); free(s->tau_f); free(s->B0); free(s->face_dt); free(s->k_f);
-  free(s->heap);
+  free(s->A); free(s->tau_e); free(s->tau_f); free(s->B0); free(s->face_dt);
+  free(s->group_start); free(s->group_face); free(s->group_dt); free(s->k_g); free(s->heap);
   free(s);
 }
 
@@ -47,6 +49,7 @@ size_t gm_mesh_maxwell_step(const gm_mesh_maxwell *s) { return s->step; }
 double gm_mesh_maxwell_time(const gm_mesh_maxwell *s) { return s->t; }
 const double *gm_mesh_maxwell_e(const gm_mesh_maxwell *s) { return s->E; }
 const double *gm_mesh_maxwell_b(const gm_mesh_maxwell *s) { return s->B; }
+size_t gm_mesh_maxwell_avi_groups(const gm_mesh_maxwell *s) { return s->n_groups; }
 void gm_mesh_maxwell_update_counts(const gm_mesh_maxwell *s, size_t *faces, size_t *edges) {
   if (faces) *faces = s->face_updates;
   if (edges) *edges = s->edge_updates;
@@ -100,53 +103,113 @@ void mm_solve_eps(const gm_mesh_maxwell *s, const double *D, double *E) {
   for (size_t i = 0; i < s->n_int; ++i) E[s->interior[i]] = s->tmp_i[i];
 }
 
-/* λ_max of ⋆_ε⁻¹ K, K = d₁ᵀ ⋆_ν d₁ on interior edges, by power iteration with the Rayleigh
- * quotient vᵀKv / vᵀ⋆_ε v (⋆_ε-self-adjoint; the quotient increases to λ_max for positive
- * stars). Leapfrog is stable for Δt² λ_max < 4. */
-static double power_lambda(gm_mesh_maxwell *s) {
-  double *v = s->work_e, *y = s->D, *f = s->work_f, *h = s->work_f2;
+/* Number of eigenvalues of the symmetric tridiagonal T (diagonal a, off-diagonal b[1..m−1])
+ * greater than x (Sturm sequence of T − x). */
+static size_t sturm_above(const double *a, const double *b, size_t m, double x) {
+  size_t below = 0;
+  double q = 1.0;
+  for (size_t i = 0; i < m; ++i) {
+    q = a[i] - x - (i ? b[i] * b[i] / q : 0.0);
+    if (q == 0.0) q = 1e-300;
+    if (q < 0.0) ++below;
+  }
+  return m - below;
+}
+
+/* λ_max(T) by bisection on [lo, hi] (Gershgorin interval). */
+static double tridiag_max(const double *a, const double *b, size_t m) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t i = 0; i < m; ++i) {
+    const double r = (i ? fabs(b[i]) : 0.0) + (i + 1 < m ? fabs(b[i + 1]) : 0.0);
+    lo = fmin(lo, a[i] - r);
+    hi = fmax(hi, a[i] + r);
+  }
+  for (int it = 0; it < 200 && hi - lo > 1e-15 * fmax(fabs(lo), fabs(hi)); ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (sturm_above(a, b, m, mid) > 0) lo = mid; else hi = mid;
+  }
+  return hi;
+}
+
+/* λ_max of ⋆_ε⁻¹ K, K = d₁ᵀ ⋆_ν d₁ on interior edges (⋆_ε-self-adjoint), by the Lanczos
+ * process in the ⋆_ε inner product (Golub & Van Loan, Matrix Computations, 4th ed., §10.1;
+ * without reorthogonalization: lost orthogonality only duplicates converged Ritz values, and the
+ * largest Ritz value still increases to λ_max from below). Far fewer products than the power
+ * iteration on large meshes, whose top eigenvalues cluster. Leapfrog is stable for
+ * Δt² λ_max < 4. Uses E, D, work_e, work_f, work_f2 as scratch (zeroed after). */
+static double lanczos_lambda(gm_mesh_maxwell *s) {
+  enum { KMAX = 600 };
+  double *v = s->work_e, *vp = s->E, *w = s->D, *f = s->work_f, *h = s->work_f2;
+  double *mw = s->M1_full ? malloc(s->ne * sizeof(double)) : NULL;
+  double *al = malloc(KMAX * sizeof(double)), *be = malloc((KMAX + 1) * sizeof(double));
+  double lambda = 0.0;
+  if ((s->M1_full && !mw) || !al || !be) goto done;
   uint64_t z = 0x2545f4914f6cdd1dull;
   for (size_t e = 0; e < s->ne; ++e) {
     z ^= z << 13; z ^= z >> 7; z ^= z << 17;
     v[e] = s->inv_eps[e] != 0.0 ? (double)(z >> 11) / 9007199254740992.0 - 0.5 : 0.0;
+    vp[e] = 0.0;
   }
-  double lambda = 0.0;
-  for (int it = 0; it < 5000; ++it) {
-    double nrm = 0.0;
-    for (size_t e = 0; e < s->ne; ++e) nrm += v[e] * v[e];
-    nrm = sqrt(nrm);
-    if (nrm == 0.0) break;
-    for (size_t e = 0; e < s->ne; ++e) v[e] /= nrm;
-    /* vᵀ⋆_ε v */
-    double mv = 0.0;
-    if (s->M1_full) {
-      gm_csr_matvec(s->M1_full, 1.0, v, 0.0, y);
-      for (size_t e = 0; e < s->ne; ++e) mv += v[e] * y[e];
-    } else {
-      for (size_t e = 0; e < s->ne; ++e) mv += v[e] * v[e] * s->eps_star[e];
-    }
+  double beta = 0.0, prev = 0.0;
+  double mv = 0.0; /* normalise the first vector in ⋆_ε */
+  if (s->M1_full) {
+    gm_csr_matvec(s->M1_full, 1.0, v, 0.0, mw);
+    for (size_t e = 0; e < s->ne; ++e) mv += v[e] * mw[e];
+  } else {
+    for (size_t e = 0; e < s->ne; ++e) mv += v[e] * v[e] * s->eps_star[e];
+  }
+  if (!(mv > 0.0)) goto done;
+  for (size_t e = 0; e < s->ne; ++e) v[e] /= sqrt(mv);
+  for (size_t j = 0; j < KMAX; ++j) {
     gm_csr_matvec(s->d1, 1.0, v, 0.0, f);
     mm_apply_nu(s, f, h);
-    double kv = 0.0;
-    for (size_t k = 0; k < s->nf; ++k) kv += f[k] * h[k];
-    gm_csr_matvec(s->d1t, 1.0, h, 0.0, y);
-    for (size_t e = 0; e < s->ne; ++e) if (s->inv_eps[e] == 0.0) y[e] = 0.0;
-    mm_solve_eps(s, y, v);
-    const double rq = kv / mv;
-    if (it > 20 && fabs(rq - lambda) <= 1e-10 * fabs(rq)) { lambda = rq; break; }
-    lambda = rq;
+    double a = 0.0; /* vᵀKv */
+    for (size_t k = 0; k < s->nf; ++k) a += f[k] * h[k];
+    gm_csr_matvec(s->d1t, 1.0, h, 0.0, w);
+    for (size_t e = 0; e < s->ne; ++e) if (s->inv_eps[e] == 0.0) w[e] = 0.0;
+    mm_solve_eps(s, w, w);                                      /* w = ⋆_ε⁻¹ K v */
+    for (size_t e = 0; e < s->ne; ++e) w[e] -= a * v[e] + beta * vp[e];
+    al[j] = a;
+    be[j] = beta;
+    lambda = tridiag_max(al, be, j + 1);
+    if (j > 20 && fabs(lambda - prev) <= 1e-12 * fabs(lambda)) break;
+    prev = lambda;
+    double nw = 0.0;
+    if (s->M1_full) {
+      gm_csr_matvec(s->M1_full, 1.0, w, 0.0, mw);
+      for (size_t e = 0; e < s->ne; ++e) nw += w[e] * mw[e];
+    } else {
+      for (size_t e = 0; e < s->ne; ++e) nw += w[e] * w[e] * s->eps_star[e];
+    }
+    beta = sqrt(nw);
+    if (!(beta > 1e-14 * fabs(lambda))) break; /* invariant subspace: λ_max(T) is exact */
+    for (size_t e = 0; e < s->ne; ++e) {
+      vp[e] = v[e];
+      v[e] = w[e] / beta;
+    }
   }
+done:
+  free(mw), free(al), free(be);
   memset(s->D, 0, s->ne * sizeof(double));
+  memset(s->E, 0, s->ne * sizeof(double));
   return lambda;
 }
 
-/* The Whitney stars: ε M_1 on the interior edges (CHOLMOD, once) and M_2 / μ. */
-static gm_status build_whitney(gm_mesh_maxwell *s, double eps, double mu, gm_error *err) {
-  gm_status st = gm_geometry_whitney_mass(s->g, 1, &s->M1_full);
-  if (st == GM_OK) st = gm_geometry_whitney_mass(s->g, 2, &s->M2);
+/* The Whitney stars with materials per cell: M_1^ε = Σ_T ε_T ∫_T φ_e·φ_e' on the interior edges
+ * (CHOLMOD, once) and M_2^ν = Σ_T μ_T⁻¹ ∫_T φ_σ·φ_σ' (Bossavit 1988: the Galerkin Hodge stars
+ * are the mass matrices of the Whitney forms weighted by the material). */
+static gm_status build_whitney(gm_mesh_maxwell *s, const double *eps, const double *mu,
+                               gm_error *err) {
+  double *inv_mu = NULL;
+  if (mu) {
+    inv_mu = malloc(s->nt * sizeof(double));
+    if (!inv_mu) return gm_error_set(err, GM_ENOMEM, "out of memory");
+    for (size_t T = 0; T < s->nt; ++T) inv_mu[T] = 1.0 / mu[T];
+  }
+  gm_status st = gm_geometry_whitney_mass_weighted(s->g, 1, eps, &s->M1_full);
+  if (st == GM_OK) st = gm_geometry_whitney_mass_weighted(s->g, 2, inv_mu, &s->M2);
+  free(inv_mu);
   if (st != GM_OK) return gm_error_set(err, st, "mesh maxwell: Whitney mass matrices failed");
-  gm_csr_scale(s->M1_full, eps);
-  gm_csr_scale(s->M2, 1.0 / mu);
   size_t *map = malloc(s->ne * sizeof(size_t));
   s->interior = malloc((s->ne ? s->ne : 1) * sizeof(size_t));
   if (!map || !s->interior) { free(map); return gm_error_set(err, GM_ENOMEM, "out of memory"); }
@@ -254,14 +317,7 @@ gm_status gm_mesh_maxwell_create(const gm_geometry *g, const double *epsilon, co
       gm_mesh_maxwell_free(s);
       return gm_error_set(err, GM_EUNSUPPORTED, "mesh maxwell: the AVI needs the diagonal star");
     }
-    for (size_t T = 1; T < nt; ++T)
-      if ((epsilon && epsilon[T] != epsilon[0]) || (mu && mu[T] != mu[0])) {
-        gm_mesh_maxwell_free(s);
-        return gm_error_set(err, GM_EUNSUPPORTED,
-                            "mesh maxwell: the Whitney star takes uniform epsilon and mu only "
-                            "(cell %zu differs)", T);
-      }
-    st = build_whitney(s, epsilon && nt ? epsilon[0] : 1.0, mu && nt ? mu[0] : 1.0, err);
+    st = build_whitney(s, epsilon, mu, err);
     if (st != GM_OK) { gm_mesh_maxwell_free(s); return st; }
     for (size_t e = 0; e < s->ne; ++e) s->inv_eps[e] = s->bnd_e[e] ? 0.0 : 1.0; /* the mask */
   } else if (o.star != GM_MESH_STAR_DIAGONAL) {
@@ -294,7 +350,15 @@ gm_status gm_mesh_maxwell_create(const gm_geometry *g, const double *epsilon, co
     s->inv_eps[e] = s->bnd_e[e] ? 0.0 : 1.0 / s->eps_star[e];
   }
   }
-  const double lambda = power_lambda(s);
+  if (o.star == GM_MESH_STAR_DIAGONAL) {
+    /* the fused Ampère operator d1ᵀ⋆_ν, PEC rows zeroed (d1 entries are ±1, so the products
+       round exactly as ⋆_ν B followed by d1ᵀ) */
+    if (gm_csr_copy(s->d1t, &s->curl_h) != GM_OK) goto nomem;
+    for (size_t e = 0; e < s->ne; ++e)
+      for (size_t p = s->curl_h->row_start[e]; p < s->curl_h->row_start[e + 1]; ++p)
+        s->curl_h->val[p] = s->bnd_e[e] ? 0.0 : s->curl_h->val[p] * s->nu_star[s->curl_h->col[p]];
+  }
+  const double lambda = lanczos_lambda(s);
   s->cfl = lambda > 0.0 ? 2.0 / sqrt(lambda) : INFINITY;
   face_limits(s);
   s->opt = o;
@@ -312,8 +376,7 @@ gm_status gm_mesh_maxwell_create(const gm_geometry *g, const double *epsilon, co
   }
   /* AVI: per-face steps, the event heap, the A/τ arrays (seed 000 Fig. 3.6, notes A12). */
   MM_ALLOC(s->A, s->ne); MM_ALLOC(s->tau_e, s->ne); MM_ALLOC(s->tau_f, s->nf);
-  MM_ALLOC(s->B0, s->nf); MM_ALLOC(s->face_dt, s->nf); MM_ALLOC(s->k_f, s->nf);
-  MM_ALLOC(s->heap, s->nf);
+  MM_ALLOC(s->B0, s->nf); MM_ALLOC(s->face_dt, s->nf);
   double smallest = INFINITY;
   for (size_t f = 0; f < s->nf; ++f) {
     if (!isfinite(s->face_limit[f])) { s->face_dt[f] = INFINITY; continue; } /* no interior edge */
@@ -328,10 +391,18 @@ gm_status gm_mesh_maxwell_create(const gm_geometry *g, const double *epsilon, co
     s->face_dt[f] = dtf;
     smallest = dtf < smallest ? dtf : smallest;
   }
+  if (o.avi_levels && isfinite(smallest)) { /* round down to Δt_min 2^k */
+    for (size_t f = 0; f < s->nf; ++f) {
+      if (!isfinite(s->face_dt[f])) continue;
+      double d = smallest;
+      while (2.0 * d <= s->face_dt[f]) d *= 2.0; /* exact doublings: levels share their ticks */
+      s->face_dt[f] = d;
+    }
+  }
   s->dt = isfinite(smallest) ? smallest : 0.0;
   s->sample_dt = s->dt;
   s->next_sample = s->dt;
-  mm_heap_build(s);
+  if (mm_groups_build(s) != GM_OK) goto nomem;
   *out = s;
   return GM_OK;
 nomem:

@@ -457,3 +457,17 @@ Test(cli_maxwell, mesh_leapfrog_and_avi) {
   cr_expect_eq(r.status, 2, "%s", r.err);
   run_output_free(&r);
 }
+
+/* E5 as one command (short run: the structure, not the spectrum, which needs --t-end 60). */
+Test(cli_maxwell, mesh_e5, .timeout = 300) {
+  run_output r = run_cli("maxwell mesh " GM_SOURCE_DIR "/examples/e5_cavity.msh --e5 --t-end 8");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_expect(strstr(r.out, "the mesh is not well-centred") != NULL, "%s", r.out);
+  cr_expect(strstr(r.out, "time ratio AVI/uniform") != NULL, "%s", r.out);
+  cr_expect_lt(number_after(r.out, "ratio to uniform "), 1.0, "%s", r.out);
+  cr_expect_gt(number_after(r.out, "ratio to uniform "), 0.1, "%s", r.out);
+  run_output_free(&r);
+  r = run_cli("maxwell mesh --rect 6 --e5");
+  cr_expect_eq(r.status, 2, "%s", r.err);
+  run_output_free(&r);
+}

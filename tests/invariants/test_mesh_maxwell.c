@@ -102,8 +102,7 @@ Test(mesh_maxwell, leapfrog_3d_whitney_invariants) {
 
 /* With every face's step equal to the leapfrog's, the AVI's events tie and it is the leapfrog:
  * AVI from (B⁰, E^{½}) at t = (n−1)Δt against the leapfrog from (B⁰, E^{−½}) after n steps. */
-Test(mesh_maxwell, avi_equal_steps_is_leapfrog) {
-  mm_fixture f = mm_rect(10, 0.7, 0.0, 1);
+static void check_avi_equal_steps(mm_fixture f, size_t n, const char *label) {
   gm_error err = {{0}};
   const size_t ne = gm_complex_count(f.cx, 1), nf = gm_complex_count(f.cx, 2);
   double *E = malloc(ne * sizeof(double)), *B = malloc(nf * sizeof(double));
@@ -112,11 +111,18 @@ Test(mesh_maxwell, avi_equal_steps_is_leapfrog) {
   gm_mesh_maxwell *lf = NULL, *avi = NULL;
   cr_assert_eq(gm_mesh_maxwell_create(f.g, NULL, NULL, NULL, &lf, &err), GM_OK, "%s",
                err.message);
+  /* the leapfrog's step, or the smallest local limit (a Gershgorin bound) when that is less */
+  gm_mesh_maxwell_options lo = gm_mesh_maxwell_defaults();
+  lo.dt = gm_mesh_maxwell_dt(lf);
+  for (size_t k = 0; k < nf; ++k) lo.dt = fmin(lo.dt, gm_mesh_maxwell_face_limits(lf)[k]);
+  gm_mesh_maxwell_free(lf);
+  cr_assert_eq(gm_mesh_maxwell_create(f.g, NULL, NULL, &lo, &lf, &err), GM_OK, "%s",
+               err.message);
   const double dt = gm_mesh_maxwell_dt(lf);
   cr_assert_eq(gm_mesh_maxwell_set_fields(lf, E, B), GM_OK);
   /* E^{½} from one leapfrog step of a copy */
   gm_mesh_maxwell *one = NULL;
-  cr_assert_eq(gm_mesh_maxwell_create(f.g, NULL, NULL, NULL, &one, &err), GM_OK);
+  cr_assert_eq(gm_mesh_maxwell_create(f.g, NULL, NULL, &lo, &one, &err), GM_OK);
   gm_mesh_maxwell_set_fields(one, E, B);
   cr_assert_eq(gm_mesh_maxwell_advance(one, 1), GM_OK);
   double *face_dt = malloc(nf * sizeof(double));
@@ -127,7 +133,7 @@ Test(mesh_maxwell, avi_equal_steps_is_leapfrog) {
   cr_assert_eq(gm_mesh_maxwell_create(f.g, NULL, NULL, &o, &avi, &err), GM_OK, "%s",
                err.message);
   cr_assert_eq(gm_mesh_maxwell_set_fields(avi, gm_mesh_maxwell_e(one), B), GM_OK);
-  const size_t n = 500;
+  cr_assert_eq(gm_mesh_maxwell_avi_groups(avi), 1);
   cr_assert_eq(gm_mesh_maxwell_advance(lf, n - 1), GM_OK);
   memcpy(Bprev, gm_mesh_maxwell_b(lf), nf * sizeof(double));
   cr_assert_eq(gm_mesh_maxwell_advance(lf, 1), GM_OK);
@@ -140,9 +146,9 @@ Test(mesh_maxwell, avi_equal_steps_is_leapfrog) {
   size_t fu, eu, fl, el;
   gm_mesh_maxwell_update_counts(avi, &fu, &eu);
   gm_mesh_maxwell_update_counts(lf, &fl, &el);
-  fprintf(stderr, "mesh_maxwell AVI with equal steps vs leapfrog after %zu steps: max|ΔE|/max|E| "
-          "%.2e, max|ΔB|/max|B| %.2e; face updates %zu (leapfrog %zu)\n", n, de / se, db / sb,
-          fu, fl);
+  fprintf(stderr, "mesh_maxwell AVI with equal steps vs leapfrog (%s) after %zu steps: "
+          "max|ΔE|/max|E| %.2e, max|ΔB|/max|B| %.2e; face updates %zu (leapfrog %zu)\n", label, n,
+          de / se, db / sb, fu, fl);
   cr_assert_lt(de / se, 1e-11);
   cr_assert_lt(db / sb, 1e-11);
   free(E); free(B); free(Bprev); free(Bavi); free(face_dt);
@@ -150,12 +156,19 @@ Test(mesh_maxwell, avi_equal_steps_is_leapfrog) {
   mm_fixture_free(&f);
 }
 
-/* AVI on a randomly partitioned mesh, each face at 1/10 of its local limit (seed 000 E4). */
-Test(mesh_maxwell, avi_random_mesh_invariants) {
-  mm_fixture f = mm_rect(10, 0.7, 0.3, 99);
+Test(mesh_maxwell, avi_equal_steps_is_leapfrog) {
+  check_avi_equal_steps(mm_rect(10, 0.7, 0.0, 1), 500, "2-D");
+  check_avi_equal_steps(mm_bcc(3), 200, "3-D bcc");
+}
+
+/* AVI each face at 1/10 of its local limit (seed 000 E4) from random fields to t = T, sampled
+ * every 0.05: Gauss's law, div B, energy, and the face updates against uniform stepping at the
+ * smallest step. */
+static void check_avi(mm_fixture f, int levels, double T, double energy_tol, const char *label) {
   gm_error err = {{0}};
   gm_mesh_maxwell_options o = gm_mesh_maxwell_defaults();
   o.scheme = GM_MESH_AVI;
+  o.avi_levels = levels;
   gm_mesh_maxwell *s = NULL;
   cr_assert_eq(gm_mesh_maxwell_create(f.g, NULL, NULL, &o, &s, &err), GM_OK, "%s", err.message);
   const size_t ne = gm_complex_count(f.cx, 1), nf = gm_complex_count(f.cx, 2);
@@ -168,7 +181,7 @@ Test(mesh_maxwell, avi_random_mesh_invariants) {
   w.gauss = calloc(w.nv, sizeof(double));
   cr_assert_eq(gm_mesh_maxwell_set_sample_dt(s, 0.05), GM_OK);
   cr_assert_eq(gm_mesh_maxwell_add_observer(s, 1, watcher, &w), GM_OK);
-  cr_assert_eq(gm_mesh_maxwell_advance_to(s, 20.0), GM_OK, "%s", gm_mesh_maxwell_errmsg(s));
+  cr_assert_eq(gm_mesh_maxwell_advance_to(s, T), GM_OK, "%s", gm_mesh_maxwell_errmsg(s));
   size_t fu, eu;
   gm_mesh_maxwell_update_counts(s, &fu, &eu);
   const double *lim = gm_mesh_maxwell_face_limits(s);
@@ -176,17 +189,33 @@ Test(mesh_maxwell, avi_random_mesh_invariants) {
   size_t active = 0;
   for (size_t k = 0; k < nf; ++k)
     if (isfinite(lim[k])) { smallest = fmin(smallest, 0.1 * lim[k]); ++active; }
-  const double uniform = (double)active * floor(20.0 / smallest);
-  fprintf(stderr, "mesh_maxwell AVI, random partition, to t = 20: %zu face updates (uniform at "
-          "the smallest step: %.0f, ratio %.3f), %zu edge updates; energy deviation %.2e; "
-          "Gauss drift %.2e\n", fu, uniform, (double)fu / uniform, eu, w.plain_dev,
-          w.gauss_drift);
+  const double uniform = (double)active * floor(T / smallest);
+  fprintf(stderr, "mesh_maxwell AVI, %s, levels %d, to t = %g: %zu groups, %zu face updates "
+          "(uniform at the smallest step: %.0f, ratio %.3f), %zu edge updates; energy deviation "
+          "%.2e; Gauss drift %.2e; div B %.2e\n", label, levels, T, gm_mesh_maxwell_avi_groups(s),
+          fu, uniform, (double)fu / uniform, eu, w.plain_dev, w.gauss_drift, w.divb);
   cr_assert_lt(w.gauss_drift, 1e-12);
-  cr_assert_lt(w.plain_dev, 0.05);
-  cr_assert_lt((double)fu, uniform);
+  cr_assert_lt(w.divb, 1e-12);
+  cr_assert_lt(w.plain_dev, energy_tol);
+  if (levels) cr_assert_leq((double)fu, uniform); /* steps rounded down: at most uniform's */
+  else cr_assert_lt((double)fu, uniform);
+  if (levels) cr_assert_leq(gm_mesh_maxwell_avi_groups(s), 12);
   free(w.gauss0); free(w.gauss); free(E); free(B);
   gm_mesh_maxwell_free(s);
   mm_fixture_free(&f);
+}
+
+/* AVI on a randomly partitioned mesh, each face at 1/10 of its local limit (seed 000 E4); with
+ * the steps as given and rounded to power-of-two levels. */
+Test(mesh_maxwell, avi_random_mesh_invariants) {
+  check_avi(mm_rect(10, 0.7, 0.3, 99), 0, 20.0, 0.05, "random partition");
+  check_avi(mm_rect(10, 0.7, 0.3, 99), 1, 20.0, 0.05, "random partition");
+}
+
+/* AVI in 3-D on the well-centred bcc tetrahedra, jittered so the face limits differ. */
+Test(mesh_maxwell, avi_3d_invariants) {
+  check_avi(mm_bcc_jittered(3, 0.08, 5), 0, 3.0, 0.05, "3-D bcc jittered");
+  check_avi(mm_bcc_jittered(3, 0.08, 5), 1, 3.0, 0.05, "3-D bcc jittered");
 }
 
 /* Seed 000 eq. 3.8: (dα, β)_{k+1} = (α, δ̃β)_k + ⟨α ∧ ⋆β, ∂K⟩ with boundary flux data. */

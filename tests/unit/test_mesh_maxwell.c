@@ -80,11 +80,17 @@ Test(mesh_maxwell, bad_materials_and_steps) {
   gm_mesh_maxwell_free(s);
   o.face_dt = fdt;
   expect_create(f.g, NULL, NULL, &o, GM_EINVAL, "local CFL");
-  /* Whitney star: uniform materials only, leapfrog only */
+  /* Whitney star: materials per cell accepted (and checked), leapfrog only */
   o = gm_mesh_maxwell_defaults();
   o.star = GM_MESH_STAR_WHITNEY;
   eps[2] = 2.0;
-  expect_create(f.g, eps, NULL, &o, GM_EUNSUPPORTED, "uniform");
+  gm_mesh_maxwell *wm = NULL;
+  gm_error werr = {{0}};
+  cr_assert_eq(gm_mesh_maxwell_create(f.g, eps, NULL, &o, &wm, &werr), GM_OK, "%s", werr.message);
+  gm_mesh_maxwell_free(wm);
+  eps[2] = -1.0;
+  expect_create(f.g, eps, NULL, &o, GM_EINVAL, "epsilon of cell 2");
+  eps[2] = 1.0;
   o.scheme = GM_MESH_AVI;
   expect_create(f.g, NULL, NULL, &o, GM_EUNSUPPORTED, "diagonal star");
   free(eps); free(mu); free(E); free(B); free(fdt);
@@ -177,4 +183,51 @@ Test(mesh_maxwell, materials_per_cell) {
   free(eps); free(mu); free(E); free(B); free(gv0); free(gv1);
   gm_mesh_maxwell_free(b);
   mm_fixture_free(&f);
+}
+
+/* gm_mesh_bcc: 4 tetrahedra per interior face of the cube grid, all of one volume h³/12, the
+ * circumcentric stars positive (the diagonal star is accepted without insisting), the CFL limit
+ * from the Lanczos estimate within the Gershgorin bound; bad counts refused. */
+Test(mesh_maxwell, bcc_mesh_is_well_centred) {
+  mm_fixture f = mm_bcc(4);
+  const size_t faces = 3 * 3 * 4 * 4;
+  cr_assert_eq(f.mesh->n_cells, 4 * faces);
+  cr_assert_eq(f.mesh->n_vertices, 5 * 5 * 5 - 8 + 4 * 4 * 4);
+  const double *vol = gm_geometry_primal_volumes(f.g, 3);
+  const double h = 0.25;
+  for (size_t T = 0; T < f.mesh->n_cells; ++T)
+    cr_assert_float_eq(vol[T], h * h * h / 12.0, 1e-15, "cell %zu volume %g", T, vol[T]);
+  gm_mesh_maxwell *s = NULL;
+  gm_error err = {{0}};
+  cr_assert_eq(gm_mesh_maxwell_create(f.g, NULL, NULL, NULL, &s, &err), GM_OK, "%s", err.message);
+  const double *lim = gm_mesh_maxwell_face_limits(s);
+  double smallest = INFINITY;
+  for (size_t k = 0; k < gm_complex_count(f.cx, 2); ++k) smallest = fmin(smallest, lim[k]);
+  /* the Gershgorin local limits bound the spectrum from above: global limit >= smallest local */
+  cr_assert_geq(gm_mesh_maxwell_cfl_limit(s), smallest * (1.0 - 1e-12));
+  gm_mesh_maxwell_free(s);
+  mm_fixture_free(&f);
+  gm_mesh *m = NULL;
+  const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+  cr_assert_eq(gm_mesh_bcc(lo, hi, 1, 4, 4, 0, &m, &err), GM_EINVAL);
+  cr_assert(strstr(err.message, "out of range") != NULL, "%s", err.message);
+  cr_assert_null(m);
+  const double bad[3] = {1, 0, 1};
+  cr_assert_eq(gm_mesh_bcc(lo, bad, 3, 3, 3, 0, &m, &err), GM_EINVAL);
+  /* filled: the tetrahedra tile the box (total volume 1 × 0.8 × 0.6, none inverted) */
+  const double box[3] = {1, 0.8, 0.6};
+  cr_assert_eq(gm_mesh_bcc(lo, box, 5, 4, 3, 1, &m, &err), GM_OK, "%s", err.message);
+  gm_complex *cx = NULL;
+  gm_geometry *g = NULL;
+  cr_assert_eq(gm_mesh_complex(m, &cx, &err), GM_OK, "%s", err.message);
+  cr_assert_eq(gm_geometry_create(cx, NULL, &g, &err), GM_OK, "%s", err.message);
+  cr_assert_eq(gm_geometry_inverted_count(g), 0);
+  double total = 0.0;
+  const double *v3 = gm_geometry_primal_volumes(g, 3);
+  for (size_t T = 0; T < gm_complex_count(cx, 3); ++T) total += v3[T];
+  cr_assert_float_eq(total, 0.48, 1e-13);
+  cr_assert_eq(gm_complex_boundary_count(cx, 2), 2 * 4 * (20 + 12 + 15));
+  gm_geometry_free(g);
+  gm_complex_free(cx);
+  gm_mesh_free(m);
 }
