@@ -361,7 +361,7 @@ Test(cli, unknown_names) {
   expect_usage_error("order kepler --method rk5", "did you mean: rk4");
   expect_usage_error("run kepler --metod rk4", "unknown option '--metod'; did you mean: --method?");
   expect_usage_error("list metods", "did you mean: methods?");
-  expect_usage_error("rnu kepler", "unknown command 'rnu'; did you mean: run?");
+  expect_usage_error("rnu kepler", "unknown command 'rnu'; did you mean: run");
   expect_usage_error("run kepler --set bogus=1", "bogus");
   expect_usage_error("run kepler --set omega=2", "omega");
 }
