@@ -370,10 +370,16 @@ typedef enum gm_order_outcome {
                                  levels land inside it: the asymptotic range of this order
                                  lies at or below round-off on this problem */
   GM_ORDER_TOO_FEW_LEVELS,    /* fewer than three levels reached the window */
-  GM_ORDER_IRREGULAR          /* the errors in the window stray from a power law by more than
+  GM_ORDER_IRREGULAR,         /* the errors in the window stray from a power law by more than
                                  GM_ORDER_MAX_DEVIATION decades (round-off, solver tolerance) */
+  GM_ORDER_NOT_SETTLED        /* a power law in the window, but its slope (order, kept) is not
+                                 the declared order to GM_ORDER_TOLERANCE and a finer level is
+                                 already below the window: round-off cuts the window before the
+                                 slope can be seen to settle (pre-asymptotic errors, e.g. orders
+                                 ≥ 10 on Kepler with e = 0.6) */
 } gm_order_outcome;
 #define GM_ORDER_MAX_DEVIATION 0.05
+#define GM_ORDER_TOLERANCE 0.3
 
 /* The asymptotic window of a method of order p, relative to the size of the solution
  * (max(1, |y0|∞)): errors between *bottom and *top are fitted. Above it the error expansion's

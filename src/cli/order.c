@@ -20,8 +20,9 @@ static const char usage[] =
     "from 10^-(p+2), clamped to [1e-7, 1e-3], down at most 2p decades and not below 1e-12).\n"
     "The error is the max-norm distance of the state at T from the exact solution when the\n"
     "problem has one, else from a reference run. When the order cannot be measured (every\n"
-    "error above the window, round-off reached before three levels are in it, too few levels),\n"
-    "the table is printed and the reason, with exit status 1.\n\n"
+    "error above the window, round-off reached before three levels are in it, too few levels,\n"
+    "a slope more than 0.3 off p with round-off right below the window), the table is printed\n"
+    "and the reason, with exit status 1.\n\n"
     "options:\n"
     "  --method NAME      method to measure (required)\n"
     "  --dt H0            largest step (default: the largest power of two whose error is in\n"
@@ -85,6 +86,12 @@ static const char *outcome_text(int outcome) {
     case GM_ORDER_IRREGULAR:
       return "the errors inside the window do not follow a power law (more than 0.05 decade "
              "from the fitted line: round-off or the solver's tolerance)";
+    case GM_ORDER_NOT_SETTLED:
+      return "the slope over the window is not the declared order (more than 0.3 off) and the "
+             "next levels are already at round-off, so no finer level shows whether it settles: "
+             "the asymptotic range of this order is not visible above round-off on this problem "
+             "(pre-asymptotic errors, or round-off inside the window; a less eccentric orbit, "
+             "e.g. kepler's e = 0.1 of `geomint order --method M`, lifts it)";
     default:
       return "measured";
   }
@@ -100,6 +107,8 @@ static const char *outcome_key(int outcome) {
       return "too-few-levels";
     case GM_ORDER_IRREGULAR:
       return "irregular";
+    case GM_ORDER_NOT_SETTLED:
+      return "not-settled";
     default:
       return "measured";
   }
@@ -122,7 +131,9 @@ static int print_result(const char *problem, const gm_scheme *sc, const gm_order
     cJSON_AddStringToObject(root, "method", m->name);
     if (sc->basic != NULL) cJSON_AddStringToObject(root, "basic", sc->basic->name);
     cJSON_AddNumberToObject(root, "declared_order", m->order);
-    cJSON_AddItemToObject(root, "order", cli_json_number(r->order));
+    cJSON_AddItemToObject(root, "order", cli_json_number(measured ? r->order : NAN));
+    if (r->outcome == GM_ORDER_NOT_SETTLED)
+      cJSON_AddItemToObject(root, "slope", cli_json_number(r->order));
     cJSON_AddStringToObject(root, "outcome", outcome_key(r->outcome));
     if (!measured) cJSON_AddStringToObject(root, "error", outcome_text(r->outcome));
     cJSON_AddNumberToObject(root, "n_fitted", (double)r->n_fitted);
@@ -156,6 +167,10 @@ static int print_result(const char *problem, const gm_scheme *sc, const gm_order
     else
       printf("%5zu  %14.6e  %14.6e  %8s  %s\n", i, r->dts[i], r->errors[i], "", mark);
   }
+  if (r->outcome == GM_ORDER_NOT_SETTLED)
+    printf("slope %.3f over levels %zu..%zu (%zu levels, largest deviation %.3f decades), "
+           "declared %d\n", r->order, r->first_fitted, r->first_fitted + r->n_fitted - 1,
+           r->n_fitted, r->fit_deviation, m->order);
   if (!measured) {
     printf("order not measured: %s\n", outcome_text(r->outcome));
     cli_error("order", "%s with %s: order not measured: %s", problem, m->name,

@@ -114,6 +114,38 @@ Test(truth, order_defaults_measure_every_row) {
   }
 }
 
+/* `geomint order kepler` (e = 0.6) for rows of order ≥ 8: the declared order within ±0.3, or
+ * "not-settled" with exit status 1 when the slope over the window is off and round-off lies
+ * right below it (measured: sofroniou-spaletta-10 slope 11.05, gauss-6 14.45; gauss-5 10.09,
+ * kahan-li-8 8.14 measured). */
+Test(truth, order_eccentric_kepler_measures_or_says_why) {
+  static const char *const rows[] = {"sofroniou-spaletta-10", "gauss-6", "gauss-5", "kahan-li-8"};
+  for (size_t i = 0; i < sizeof rows / sizeof rows[0]; ++i) {
+    const gm_method *m = gm_method_find(rows[i]);
+    run_output r = run_cli("order kepler --method %s --json --quiet", rows[i]);
+    cJSON *o = parse_json(r.out);
+    const char *outcome = json_string(o, "outcome");
+    if (strcmp(outcome, "measured") == 0) {
+      cr_expect_eq(r.status, 0, "%s: exit %d", rows[i], r.status);
+      double order = json_number(o, "order");
+      cr_expect(fabs(order - m->order) <= 0.3, "%s: measured %.3f", rows[i], order);
+    } else {
+      cr_expect_str_eq(outcome, "not-settled", "%s", rows[i]);
+      cr_expect_eq(r.status, 1, "%s: exit %d", rows[i], r.status);
+      double slope = json_number(o, "slope");
+      cr_expect(fabs(slope - m->order) > 0.3, "%s: slope %.3f", rows[i], slope);
+      cr_expect(strstr(r.err, "not visible above round-off") != NULL, "%s: %s", rows[i], r.err);
+    }
+    cJSON_Delete(o);
+    run_output_free(&r);
+  }
+  run_output r = run_cli("order kepler --method sofroniou-spaletta-10");
+  cr_expect_eq(r.status, 1, "%s", r.out);
+  cr_expect(strstr(r.out, "slope ") != NULL && strstr(r.out, "declared 10") != NULL, "%s", r.out);
+  cr_expect(strstr(r.out, "fitted order") == NULL, "%s", r.out);
+  run_output_free(&r);
+}
+
 /* The example: yoshida-8 on Kepler (e = 0.6) printed 7.15 with pre-asymptotic levels. */
 Test(truth, order_yoshida8_kepler_fits_the_window) {
   run_output r = run_cli("order kepler --method yoshida-8");

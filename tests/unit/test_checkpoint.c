@@ -62,6 +62,7 @@ Test(checkpoint, restart_is_bitwise_identical) {
       {"yoshida-6", NULL, GM_SOLVER_DEFAULT, 1, 0},         /* composition, compensated */
       {"gauss-2", NULL, GM_SOLVER_FIXED_POINT, 0, 0},       /* implicit, starting values */
       {"gauss-3", NULL, GM_SOLVER_DEFAULT, 1, 1},           /* implicit, simplified Newton */
+      {"gauss-5", NULL, GM_SOLVER_FIXED_POINT_POSITIONS, 0, 1}, /* positions: stage forces kept */
       {"yoshida-4", "midpoint", GM_SOLVER_NEWTON, 0, 1},    /* composition of an implicit */
       {"mimetic-galerkin-2", NULL, GM_SOLVER_DEFAULT, 0, 0},
       {"avf", NULL, GM_SOLVER_DEFAULT, 0, 1},
