@@ -14,6 +14,8 @@ static const char usage[] =
     "usage: geomint pde run sine-gordon [--scheme NAME] [--n N] [--dt DT] [--T T] [--omega W]\n"
     "                                   [--out FILE.csv]\n"
     "       geomint pde b10 [--out DIR] [--no-plot]\n"
+    "       geomint pde nls-long [--periods P] [--n N] [--dt DT] [--every K] [--out DIR]\n"
+    "                            [--no-plot]\n"
     "\n"
     "Sine-Gordon u_tt - u_xx + sin u = 0 on [-20, 20) periodic, started from the standing\n"
     "breather u = 4 atan((k/w) sin(w t) / cosh(k x)), k = sqrt(1 - w^2), at t = 0 (u = 0,\n"
@@ -23,7 +25,12 @@ static const char usage[] =
     "     x,u,v,w,exact at T.\n"
     "b10: N = 200 (dx = 0.2): LF, EC, MS with dt = dx up to t = 500, EC and MS with dt = 2 dx\n"
     "     up to t = 100; a run that leaves |u| <= 100 or fails stops there. Writes\n"
-    "     DIR/b10-*.dat and draws DIR/b10.png (running max of max|u| against t).\n";
+    "     DIR/b10-*.dat and draws DIR/b10.png (running max of max|u| against t).\n"
+    "nls-long: NLS two-soliton collision (a = 1, 0.8, c = +-pi/5, [-20, 20) periodic) over P\n"
+    "     phase periods 2 pi/(1 - pi^2/100) of the larger soliton (default 1e4; N 128, dt 0.1):\n"
+    "     preissmann (multisymplectic) against box-sdirk2 (same box in space, SDIRK2 in time,\n"
+    "     not symplectic); writes DIR/nls-long-*.dat (periods, |dE/E|, |dP/P|, |dN/N| every K\n"
+    "     steps) and DIR/nls-long.png.\n";
 
 #define L_HALF 20.0
 
@@ -274,14 +281,24 @@ static int pde_b10(int argc, char **argv) {
   return no_plot ? CLI_EXIT_OK : b10_plot(dir);
 }
 
+int cli_pde_nls_long(int argc, char **argv); /* pde_nls.c */
+
 static int pde_main(int argc, char **argv) {
+  if (argc >= 1 && strcmp(argv[0], "nls-long") == 0) {
+    for (int k = 1; k < argc; k++)
+      if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
+        fputs(usage, stdout);
+        return CLI_EXIT_OK;
+      }
+    return cli_pde_nls_long(argc - 1, argv + 1);
+  }
   if (argc >= 1 && strcmp(argv[0], "run") == 0) return pde_run(argc - 1, argv + 1);
   if (argc >= 1 && strcmp(argv[0], "b10") == 0) return pde_b10(argc - 1, argv + 1);
   if (argc >= 1 && (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) {
     fputs(usage, stdout);
     return CLI_EXIT_OK;
   }
-  cli_error("pde", "which subcommand? run or b10 (see geomint pde --help)");
+  cli_error("pde", "which subcommand? run, b10 or nls-long (see geomint pde --help)");
   return CLI_EXIT_USAGE;
 }
 

@@ -47,6 +47,7 @@ struct gm_pde {
   gm_band band;
   /* tangent variations U (k = 0) and V (k = 1): prev, cur, new (owned, nu each) */
   double *tan[2][3];
+  double *aux[2]; /* box-sdirk2: stage 1 and the stage-2 base point (owned, nu each) */
   double *msres; /* per-cell relative multisymplectic residual of the last step (owned) */
   int ms_valid;
   /* scalar wave schemes: u^{n−1}, u^n, u^{n+1} (owned, n each) */
@@ -84,5 +85,14 @@ gm_status gm_pde_wave_start(gm_pde *p, gm_error *err); /* u¹ from u⁰, u_t */
 void gm_pde_wave_fill_state(gm_pde *p);
 double gm_pde_wave_energy(const gm_pde *p);
 double gm_pde_wave_momentum(const gm_pde *p);
+
+/* KdV (kdv.c): Zabusky–Kruskal on the scalar arrays u_prev, u, u_new, its stability bound
+ * (the largest stable Δt), and the gauge-free invariants */
+gm_status gm_pde_zk_start(gm_pde *p, gm_error *err);
+gm_status gm_pde_zk_step(gm_pde *p, gm_error *err);
+void gm_pde_zk_fill_state(gm_pde *p);
+double gm_pde_zk_bound(const gm_pde_grid *g, double umax);
+double gm_pde_kdv_energy(const gm_pde *p);
+double gm_pde_kdv_momentum(const gm_pde *p);
 
 #endif

@@ -29,6 +29,8 @@ void gm_pde_free(gm_pde *p) {
   for (int k = 0; k < 2; k++)
     for (int j = 0; j < 3; j++) free(p->tan[k][j]);
   free(p->msres);
+  free(p->aux[0]);
+  free(p->aux[1]);
   free(p->u_prev);
   free(p->u);
   free(p->u_new);
@@ -66,7 +68,8 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
   int kpiv[GM_PDE_MAX_DIM];
   memcpy(kcopy, eq->K, d * d * sizeof *kcopy);
   int k_singular = gm_lu_factor(d, kcopy, kpiv) != GM_OK;
-  if (scheme->kind == GM_PDE_PREISSMANN && n % 2 == 0 && k_singular)
+  if ((scheme->kind == GM_PDE_PREISSMANN || scheme->kind == GM_PDE_BOX_SDIRK2) && n % 2 == 0 &&
+      k_singular)
     return gm_error_set(err, GM_EINVAL,
                         "pde: the Preissmann box needs an odd number of grid points on a "
                         "periodic grid when K is singular (got n = %zu: the checkerboard mode "
@@ -75,6 +78,13 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
     return gm_error_set(err, GM_EINVAL,
                         "pde: scheme '%s' needs a wave equation (s = (u, v, w) with V, dV)",
                         scheme->name);
+  if (scheme->kind == GM_PDE_KDV_ZK && !eq->is_kdv)
+    return gm_error_set(err, GM_EINVAL, "pde: scheme 'zk' needs the KdV equation");
+  if (eq->has_gauge && (eq->gauge_phi >= d || eq->gauge_u >= d || eq->gauge_phi == eq->gauge_u))
+    return gm_error_set(err, GM_EINVAL, "pde: gauge components out of range");
+  if (eq->has_gauge && (scheme->kind == GM_PDE_EULER_BOX || scheme->kind == GM_PDE_BOX_SDIRK2))
+    return gm_error_set(err, GM_EINVAL, "pde: the Euler box does not pin the gauge of an "
+                        "equation with a potential (use preissmann)");
   if (scheme->kind == GM_PDE_WAVE_LF && dt > grid->h)
     return gm_error_set(err, GM_EINVAL,
                         "pde: LF step violates the CFL bound dt <= dx (dt = %g, dx = %g)", dt,
@@ -86,6 +96,30 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
     if (!isfinite(s0[k]))
       return gm_error_set(err, GM_EDOMAIN, "pde: initial data not finite at point %zu "
                           "component %zu", k / d, k % d);
+  if (scheme->kind == GM_PDE_KDV_ZK) {
+    double umax = 0.0;
+    for (size_t i = 0; i < n; i++) umax = fmax(umax, fabs(s0[i * d + eq->gauge_u]));
+    double bound = gm_pde_zk_bound(grid, umax);
+    if (dt > bound)
+      return gm_error_set(err, GM_EINVAL,
+                          "pde: Zabusky-Kruskal step violates its stability bound "
+                          "dt (3 sqrt(3)/(2 dx^3) + max|u|/dx) <= 1 (dt = %g > %g)", dt, bound);
+  }
+  if (eq->has_gauge && scheme->kind == GM_PDE_PREISSMANN) {
+    /* the sum of the w rows at level 0: h Σ ū_{i+½} must close the ring of φ */
+    double m = 0.0, mabs = 0.0;
+    for (size_t i = 0; i < n; i++) {
+      double ub = 0.5 * (s0[i * d + eq->gauge_u] + s0[((i + 1) % n) * d + eq->gauge_u]);
+      m += grid->h * ub;
+      mabs += grid->h * fabs(ub);
+    }
+    double tw = grid->twist[eq->gauge_phi];
+    if (!(fabs(m - tw) <= 1e-10 * (1.0 + fabs(tw) + mabs)))
+      return gm_error_set(err, GM_EINVAL,
+                          "pde: the potential's twist (%.17g) must equal the mass h sum of "
+                          "(u_i + u_{i+1})/2 (%.17g): the box's Newton system is otherwise "
+                          "inconsistent", tw, m);
+  }
 
   gm_pde *p = calloc(1, sizeof *p);
   if (p == NULL) return gm_error_set(err, GM_ENOMEM, "pde: out of memory");
@@ -107,9 +141,15 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
   ok &= (p->work = vec(8 * d + 8)) != NULL;
   ok &= (p->pos = calloc(n, sizeof *p->pos)) != NULL;
   ok &= (p->msres = vec(n)) != NULL;
-  if (!scheme->scalar) {
+  if (scheme->kind == GM_PDE_KDV_ZK) {
+    ok &= (p->u_prev = vec(n)) != NULL;
+    ok &= (p->u = vec(n)) != NULL;
+    ok &= (p->u_new = vec(n)) != NULL;
+  } else if (!scheme->scalar) {
     ok &= gm_band_init(&p->band, nu, 3 * d - 1, 3 * d - 1) == GM_OK;
-    if (options->track_variations)
+    if (scheme->kind == GM_PDE_BOX_SDIRK2)
+      for (int k = 0; k < 2; k++) ok &= (p->aux[k] = vec(nu)) != NULL;
+    if (options->track_variations && scheme->multisymplectic)
       for (int k = 0; k < 2; k++)
         for (int j = 0; j < 3; j++) ok &= (p->tan[k][j] = vec(nu)) != NULL;
   } else {
@@ -140,9 +180,16 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
         double r = lcg(&x);
         p->tan[k][0][q] = p->tan[k][1][q] = r;
       }
+    if (eq->has_gauge) /* the variations of the mass vanish (consistent linearised system) */
+      for (int k = 0; k < 2; k++) {
+        double mean = 0.0;
+        for (size_t i = 0; i < n; i++) mean += p->tan[k][0][i * d + eq->gauge_u] / (double)n;
+        for (size_t i = 0; i < n; i++)
+          p->tan[k][0][i * d + eq->gauge_u] = p->tan[k][1][i * d + eq->gauge_u] -= mean;
+      }
   }
-  if (scheme->scalar) {
-    st = gm_pde_wave_start(p, err);
+  if (scheme->scalar || scheme->kind == GM_PDE_KDV_ZK) {
+    st = scheme->scalar ? gm_pde_wave_start(p, err) : gm_pde_zk_start(p, err);
     if (st != GM_OK) {
       gm_pde_free(p);
       return st;
@@ -165,7 +212,9 @@ gm_status gm_pde_add_observer(gm_pde *p, size_t every, gm_pde_observer_fn fn, vo
 gm_status gm_pde_advance(gm_pde *p, size_t n_steps, gm_error *err) {
   if (p == NULL) return gm_error_set(err, GM_EINVAL, "pde: NULL solver");
   for (size_t k = 0; k < n_steps; k++) {
-    gm_status st = p->scheme->scalar ? gm_pde_wave_step(p, err) : gm_pde_box_step(p, err);
+    gm_status st = p->scheme->scalar                    ? gm_pde_wave_step(p, err)
+                   : p->scheme->kind == GM_PDE_KDV_ZK ? gm_pde_zk_step(p, err)
+                                                      : gm_pde_box_step(p, err);
     if (st != GM_OK) return st;
     p->steps++;
     p->stats.steps++;
@@ -199,6 +248,7 @@ static double quad_sum(const gm_pde *p, const double *M) {
 }
 
 double gm_pde_energy(const gm_pde *p) {
+  if (p->eq.is_kdv) return gm_pde_kdv_energy(p);
   if (p->scheme->scalar) return gm_pde_wave_energy(p);
   double e = 0.0;
   for (size_t i = 0; i < p->n; i++) e += p->eq.S(p->s + i * p->d, p->eq.params);
@@ -206,6 +256,7 @@ double gm_pde_energy(const gm_pde *p) {
 }
 
 double gm_pde_momentum(const gm_pde *p) {
+  if (p->eq.is_kdv) return gm_pde_kdv_momentum(p);
   if (p->scheme->scalar) return gm_pde_wave_momentum(p);
   return p->grid.h * 0.5 * quad_sum(p, p->eq.W);
 }
@@ -258,8 +309,27 @@ static double node_quad(const gm_pde *p, const double *x0, const double *x1, siz
   return r;
 }
 
+double gm_pde_cell_energy(const gm_pde *p) {
+  if (p == NULL || p->scheme->scalar) return NAN;
+  size_t n = p->n, d = p->d;
+  double e = 0.0, bar[GM_PDE_MAX_DIM];
+  for (size_t i = 0; i < n; i++) {
+    for (size_t a = 0; a < d; a++) bar[a] = 0.5 * (p->s[i * d + a] + gm_pde_at(p, p->s, i, 1, a));
+    e += p->eq.S(bar, p->eq.params) + 0.5 * cell_quad(p, p->s, i, p->eq.K);
+  }
+  return p->grid.h * e;
+}
+
+double gm_pde_cell_momentum(const gm_pde *p) {
+  if (p == NULL || p->scheme->scalar) return NAN;
+  double m = 0.0;
+  for (size_t i = 0; i < p->n; i++) m += 0.5 * cell_quad(p, p->s, i, p->eq.W);
+  return p->grid.h * m;
+}
+
 gm_status gm_pde_local_residuals(const gm_pde *p, double *energy, double *momentum) {
-  if (p == NULL || p->scheme->scalar || p->steps == 0) return GM_EUNSUPPORTED;
+  if (p == NULL || p->scheme->scalar || p->scheme->kind == GM_PDE_KDV_ZK || p->steps == 0)
+    return GM_EUNSUPPORTED;
   size_t n = p->n, d = p->d;
   const double *x0 = p->s_prev, *x1 = p->s; /* sⁿ and sⁿ⁺¹ of the last step */
   double bar[GM_PDE_MAX_DIM];
