@@ -131,6 +131,16 @@ typedef struct gm_pde_options {
   int track_variations;    /* box schemes: carry two tangent variations U, V of the scheme
                               and record the multisymplectic residual per cell each step */
   double tangent_seed;     /* seed of the pseudo-random initial variations (default 1) */
+  /* Dirichlet ends instead of the grid's ring (both 0, the default: periodic): bit a of
+   * dirichlet_left / dirichlet_right holds component a at point 0 / point n−1 at its initial
+   * value, and the points 0..n−1 span [x0, x0 + (n−1)h] with n − 1 cells. The scalar schemes
+   * (lf, ec, ms) need bit 0 (u) at both ends. The Preissmann box needs d bits in all, which
+   * replace the d equations of the missing cell: sine-Gordon u at both ends and v = u_t = 0 at
+   * the left (left = 3, right = 1; then v^{n+½} = δ_t u at every node, so 0 at the right); NLS p, q
+   * at both ends (3, 3). Not for euler-box, box-sdirk2, zk or equations with a gauge
+   * (GM_EINVAL); the grid's twist must be 0. (Here rather than in gm_pde_grid so that
+   * brace-initialised grids stay valid.) */
+  unsigned dirichlet_left, dirichlet_right;
 } gm_pde_options;
 
 gm_pde_options gm_pde_options_defaults(void); /* dt 0 (must be set), tol 1e-13, 30, off, 1 */

@@ -87,6 +87,25 @@ static void preissmann_residual(gm_pde *p, const double *x, double *F) {
    * minus Δt times the sum of the φ rows vanishes identically once h Σ ū = twist, which
    * create checks and the scheme keeps); it is replaced by the gauge φ₀ⁿ⁺¹ = φ₀ⁿ */
   if (p->eq.has_gauge) F[p->eq.gauge_phi] = x[p->eq.gauge_phi] - p->s[p->eq.gauge_phi];
+  if (gm_pde_dirichlet(p)) {
+    /* no cell n−1: its d rows hold the Dirichlet components, xᵃ = sᵃ at the ends */
+    size_t k = 0, nd = (n - 1) * d;
+    for (size_t a = 0; a < d; a++)
+      if (p->opt.dirichlet_left & (1u << a)) F[nd + k++] = x[a] - p->s[a];
+    for (size_t a = 0; a < d; a++)
+      if (p->opt.dirichlet_right & (1u << a)) F[nd + k++] = x[nd + a] - p->s[nd + a];
+  }
+}
+
+/* the Dirichlet rows of block n−1 in the Newton matrix (identity on the held components) */
+static void dirichlet_rows(gm_pde *p) {
+  size_t n = p->n, d = p->d, k = 0;
+  for (size_t a = 0; a < d; a++)
+    if (p->opt.dirichlet_left & (1u << a))
+      gm_band_add(&p->band, p->pos[n - 1] * d + k++, p->pos[0] * d + a, 1.0);
+  for (size_t a = 0; a < d; a++)
+    if (p->opt.dirichlet_right & (1u << a))
+      gm_band_add(&p->band, p->pos[n - 1] * d + k++, p->pos[n - 1] * d + a, 1.0);
 }
 
 /* Hessians at the cell midpoints into p->hess, then the Newton matrix ∂F/∂sⁿ⁺¹ (factored) */
@@ -97,6 +116,10 @@ static gm_status preissmann_jacobian(gm_pde *p, const double *x) {
   gm_band_zero(&p->band);
   for (size_t i = 0; i < n; i++) {
     size_t j = (i + 1) % n;
+    if (i == n - 1 && gm_pde_dirichlet(p)) {
+      dirichlet_rows(p);
+      break;
+    }
     for (size_t a = 0; a < d; a++)
       m[a] = 0.25 * (x[i * d + a] + gm_pde_at(p, x, i, 1, a) + p->s[i * d + a] +
                      gm_pde_at(p, p->s, i, 1, a));
@@ -211,6 +234,13 @@ static void preissmann_tangents(gm_pde *p) {
       matvec_add(d, H, 0.25, U + j * d, Ri);
     }
     if (p->eq.has_gauge) R[p->eq.gauge_phi] = U[p->eq.gauge_phi]; /* the pinned gauge */
+    if (gm_pde_dirichlet(p)) { /* held components keep their (zero) variations */
+      size_t q = 0, nd = (n - 1) * d;
+      for (size_t a = 0; a < d; a++)
+        if (p->opt.dirichlet_left & (1u << a)) R[nd + q++] = U[a];
+      for (size_t a = 0; a < d; a++)
+        if (p->opt.dirichlet_right & (1u << a)) R[nd + q++] = U[nd + a];
+    }
     band_solve_natural(p, R, p->tan[k][2]);
     if (p->eq.has_gauge) {
       /* The φ row of point 0 is dropped (gauge), so it holds only through the others: up to
@@ -246,6 +276,7 @@ static void preissmann_tangents(gm_pde *p) {
     double scale = fabs(w1) + fabs(w0) + fabs(k1) + fabs(k0);
     p->msres[i] = scale > 0.0 ? fabs(w1 - w0 + k1 - k0) / scale : 0.0;
   }
+  if (gm_pde_dirichlet(p)) p->msres[n - 1] = 0.0; /* no cell past the right end */
   p->ms_valid = 1;
 }
 

@@ -57,6 +57,10 @@ struct gm_pde {
   gm_pde_stats stats;
 };
 
+static inline int gm_pde_dirichlet(const gm_pde *p) {
+  return p->opt.dirichlet_left != 0 || p->opt.dirichlet_right != 0;
+}
+
 /* Component a of point i + shift (shift in {−1, 0, 1}) of a state x on the twisted ring:
  * x_{i+n} = x_i + twist. */
 static inline double gm_pde_at(const gm_pde *p, const double *x, size_t i, int shift, size_t a) {

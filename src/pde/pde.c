@@ -69,7 +69,7 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
   memcpy(kcopy, eq->K, d * d * sizeof *kcopy);
   int k_singular = gm_lu_factor(d, kcopy, kpiv) != GM_OK;
   if ((scheme->kind == GM_PDE_PREISSMANN || scheme->kind == GM_PDE_BOX_SDIRK2) && n % 2 == 0 &&
-      k_singular)
+      k_singular && options->dirichlet_left == 0 && options->dirichlet_right == 0)
     return gm_error_set(err, GM_EINVAL,
                         "pde: the Preissmann box needs an odd number of grid points on a "
                         "periodic grid when K is singular (got n = %zu: the checkerboard mode "
@@ -92,6 +92,29 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
   for (size_t a = 0; a < d; a++)
     if (!isfinite(grid->twist[a]))
       return gm_error_set(err, GM_EINVAL, "pde: grid twist must be finite");
+  if (options->dirichlet_left != 0 || options->dirichlet_right != 0) {
+    unsigned all = (1u << d) - 1u;
+    int bits = __builtin_popcount(options->dirichlet_left & all) +
+               __builtin_popcount(options->dirichlet_right & all);
+    if ((options->dirichlet_left | options->dirichlet_right) & ~all)
+      return gm_error_set(err, GM_EINVAL, "pde: Dirichlet masks name components past d = %zu", d);
+    for (size_t a = 0; a < d; a++)
+      if (grid->twist[a] != 0.0)
+        return gm_error_set(err, GM_EINVAL, "pde: a twist makes no sense with Dirichlet ends");
+    if (scheme->scalar && !((options->dirichlet_left & 1u) && (options->dirichlet_right & 1u)))
+      return gm_error_set(err, GM_EINVAL,
+                          "pde: Dirichlet ends for '%s' hold u (bit 0) at both ends", scheme->name);
+    if (!scheme->scalar && scheme->kind != GM_PDE_PREISSMANN)
+      return gm_error_set(err, GM_EINVAL, "pde: Dirichlet ends are not implemented for '%s'",
+                          scheme->name);
+    if (scheme->kind == GM_PDE_PREISSMANN && (size_t)bits != d)
+      return gm_error_set(err, GM_EINVAL,
+                          "pde: the Preissmann box with Dirichlet ends needs d = %zu held "
+                          "components in all (got %d): they replace the missing cell's equations",
+                          d, bits);
+    if (eq->has_gauge)
+      return gm_error_set(err, GM_EINVAL, "pde: Dirichlet ends with a gauge are not implemented");
+  }
   for (size_t k = 0; k < n * d; k++)
     if (!isfinite(s0[k]))
       return gm_error_set(err, GM_EDOMAIN, "pde: initial data not finite at point %zu "
@@ -180,6 +203,12 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
         double r = lcg(&x);
         p->tan[k][0][q] = p->tan[k][1][q] = r;
       }
+    for (int k = 0; k < 2; k++) /* held components: their variations vanish */
+      for (size_t a = 0; a < d; a++) {
+        if (options->dirichlet_left & (1u << a)) p->tan[k][0][a] = p->tan[k][1][a] = 0.0;
+        if (options->dirichlet_right & (1u << a))
+          p->tan[k][0][(n - 1) * d + a] = p->tan[k][1][(n - 1) * d + a] = 0.0;
+      }
     if (eq->has_gauge) /* the variations of the mass vanish (consistent linearised system) */
       for (int k = 0; k < 2; k++) {
         double mean = 0.0;
@@ -240,6 +269,7 @@ static double quad_sum(const gm_pde *p, const double *M) {
   double sum = 0.0;
   for (size_t i = 0; i < n; i++) {
     const double *si = p->s + i * d;
+    if (i == n - 1 && gm_pde_dirichlet(p)) break; /* no cell past the right end */
     for (size_t a = 0; a < d; a++)
       for (size_t b = 0; b < d; b++)
         sum += (gm_pde_at(p, p->s, i, 1, a) - si[a]) / p->grid.h * M[a * d + b] * si[b];
@@ -270,6 +300,7 @@ double gm_pde_norm(const gm_pde *p) {
     if (p->scheme->scalar) {
       sum += si[a] * si[a] + si[b] * si[b];
     } else {
+      if (i == n - 1 && gm_pde_dirichlet(p)) break;
       double re = 0.5 * (si[a] + sj[a]), im = 0.5 * (si[b] + sj[b]);
       sum += re * re + im * im;
     }
@@ -313,7 +344,7 @@ double gm_pde_cell_energy(const gm_pde *p) {
   if (p == NULL || p->scheme->scalar) return NAN;
   size_t n = p->n, d = p->d;
   double e = 0.0, bar[GM_PDE_MAX_DIM];
-  for (size_t i = 0; i < n; i++) {
+  for (size_t i = 0; i + (gm_pde_dirichlet(p) ? 1 : 0) < n; i++) {
     for (size_t a = 0; a < d; a++) bar[a] = 0.5 * (p->s[i * d + a] + gm_pde_at(p, p->s, i, 1, a));
     e += p->eq.S(bar, p->eq.params) + 0.5 * cell_quad(p, p->s, i, p->eq.K);
   }
@@ -323,7 +354,8 @@ double gm_pde_cell_energy(const gm_pde *p) {
 double gm_pde_cell_momentum(const gm_pde *p) {
   if (p == NULL || p->scheme->scalar) return NAN;
   double m = 0.0;
-  for (size_t i = 0; i < p->n; i++) m += 0.5 * cell_quad(p, p->s, i, p->eq.W);
+  for (size_t i = 0; i + (gm_pde_dirichlet(p) ? 1 : 0) < p->n; i++)
+    m += 0.5 * cell_quad(p, p->s, i, p->eq.W);
   return p->grid.h * m;
 }
 
@@ -335,6 +367,11 @@ gm_status gm_pde_local_residuals(const gm_pde *p, double *energy, double *moment
   double bar[GM_PDE_MAX_DIM];
   const void *c = p->eq.params;
   for (size_t i = 0; i < n; i++) {
+    if (i == n - 1 && gm_pde_dirichlet(p)) { /* no cell past the right end */
+      if (energy != NULL) energy[i] = 0.0;
+      if (momentum != NULL) momentum[i] = 0.0;
+      break;
+    }
     double Sbar[2], Smid[2];
     const double *lv[2] = {x0, x1};
     for (int l = 0; l < 2; l++) {
