@@ -25,7 +25,7 @@ Test(cli_pde, b10_stability_picture) {
 Test(cli_pde, run_writes_csv) {
   run_output r = run_cli("pde run sine-gordon --scheme ec --n 200 --dt 0.1 --T 5 --out u.csv");
   cr_assert_eq(r.status, 0, "%s", r.err);
-  cr_assert(strstr(r.out, "max |u - breather|") != NULL, "%s", r.out);
+  cr_assert(strstr(r.out, "max |u - exact|") != NULL, "%s", r.out);
   char *csv = read_file(path_in_tmp("u.csv"));
   cr_assert_not_null(csv);
   cr_assert_eq(count_lines(csv), 201);
@@ -37,7 +37,8 @@ Test(cli_pde, bad_input_exits_2) {
   const char *cases[] = {"pde run sine-gordon --scheme lf --dt 0.3",
                          "pde run sine-gordon --scheme preissmann --n 200",
                          "pde run sine-gordon --dt -1", "pde run sine-gordon --scheme box",
-                         "pde run kdv", "pde"};
+                         "pde run kdv --scheme zk --dt 0.01", "pde run kdv --c nan",
+                         "pde run burgers", "pde run nls --dt 0", "pde"};
   for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
     run_output r = run_cli("%s", cases[k]);
     cr_assert_eq(r.status, 2, "'%s' exited %d: %s", cases[k], r.status, r.err);
@@ -75,5 +76,30 @@ Test(cli_pde, nls_long_bounded_against_drifting) {
   char *dat = read_file(path_in_tmp("nl/nls-long-box-sdirk2.dat"));
   cr_assert_not_null(dat);
   free(dat);
+  run_output_free(&r);
+}
+
+Test(cli_pde, run_kdv_nls_and_vtk) {
+  run_output r = run_cli("pde run kdv --scheme zk --dt 0.002 --T 1");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_assert(strstr(r.out, "mass 11.99999995") != NULL, "%s", r.out);
+  run_output_free(&r);
+  r = run_cli("pde run sine-gordon --scheme ms --dirichlet --T 2 --frames 10 --vtk sg.vti "
+              "--out sg.csv");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  char *vti = read_file(path_in_tmp("sg.vti"));
+  cr_assert_not_null(vti);
+  /* 200 cells in x, 11 rows in t (t = 0 and 10 frames), cell data u, exact, error */
+  cr_assert(strstr(vti, "WholeExtent=\"0 200 0 11 0 0\"") != NULL, "%.400s", vti);
+  cr_assert(strstr(vti, "Name=\"error\"") != NULL);
+  free(vti);
+  char *csv = read_file(path_in_tmp("sg.csv"));
+  cr_assert_not_null(csv);
+  cr_assert_eq(count_lines(csv), 201);
+  free(csv);
+  run_output_free(&r);
+  r = run_cli("pde run nls --T 0.5");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_assert(strstr(r.out, "charge 1.99287414843") != NULL, "%s", r.out);
   run_output_free(&r);
 }
