@@ -91,8 +91,10 @@ typedef enum gm_pde_scheme_kind {
   GM_PDE_WAVE_EC = 3,    /* scalar, energy-conserving (pointwise scalar Newton) */
   GM_PDE_WAVE_MS = 4,    /* scalar, nine-point multisymplectic (Preissmann with v, w removed) */
   GM_PDE_KDV_ZK = 10,    /* KdV only: Zabusky–Kruskal explicit leapfrog in u */
-  GM_PDE_BOX_SDIRK2 = 11 /* vector, implicit: the box in space, SDIRK2 in time (not
+  GM_PDE_BOX_SDIRK2 = 11, /* vector, implicit: the box in space, SDIRK2 in time (not
                             symplectic: the comparison row of the long NLS run) */
+  GM_PDE_GAUSS_PRK = 12  /* vector, implicit: 2-stage Gauss–Legendre in t and in x (Reich
+                            2000); the state lives at the spatial Gauss points, n even */
 } gm_pde_scheme_kind;
 
 typedef struct gm_pde_scheme {
@@ -146,6 +148,11 @@ typedef struct gm_pde_options {
 gm_pde_options gm_pde_options_defaults(void); /* dt 0 (must be set), tol 1e-13, 30, off, 1 */
 
 typedef struct gm_pde gm_pde;
+
+/* x of state point i: x0 + i h for every scheme but gauss-prk, whose points are the two
+ * Gauss points of cell m = ⌊i/2⌋ = [x0 + 2mh, x0 + 2(m+1)h]: x0 + 2h(m + ½ ∓ √3/6). Sample
+ * the initial data there. */
+double gm_pde_point_x(const gm_pde_scheme *scheme, const gm_pde_grid *grid, size_t i);
 
 /* Plan a run. s0: the initial state, n·d values, point i at s0[i·d .. i·d+d−1] (copied).
  * The scalar schemes read u = s[0] and u_t = s[1] and start with the Taylor step

@@ -425,6 +425,7 @@ static gm_status sdirk_step(gm_pde *p, gm_error *err) {
 
 gm_status gm_pde_box_step(gm_pde *p, gm_error *err) {
   if (p->scheme->kind == GM_PDE_BOX_SDIRK2) return sdirk_step(p, err);
+  if (p->scheme->kind == GM_PDE_GAUSS_PRK) return gm_pde_gauss_step(p, err);
   size_t nu = p->nu;
   int pre = p->scheme->kind == GM_PDE_PREISSMANN;
   double *x = p->s_new;

@@ -48,6 +48,9 @@ struct gm_pde {
   /* tangent variations U (k = 0) and V (k = 1): prev, cur, new (owned, nu each) */
   double *tan[2][3];
   double *aux[2]; /* box-sdirk2: stage 1 and the stage-2 base point (owned, nu each) */
+  /* gauss-prk (gauss_prk.c): Newton unknowns (Z, Y) per cell, residual, band scratch, and the
+   * tangents' (δZ, δY); 6d·n/2 each, owned */
+  double *gp_x, *gp_F, *gp_b, *gp_t[2];
   double *msres; /* per-cell relative multisymplectic residual of the last step (owned) */
   int ms_valid;
   /* scalar wave schemes: u^{n−1}, u^n, u^{n+1} (owned, n each) */
@@ -89,6 +92,12 @@ gm_status gm_pde_wave_start(gm_pde *p, gm_error *err); /* u¹ from u⁰, u_t */
 void gm_pde_wave_fill_state(gm_pde *p);
 double gm_pde_wave_energy(const gm_pde *p);
 double gm_pde_wave_momentum(const gm_pde *p);
+
+/* gauss-prk (gauss_prk.c) */
+double gm_pde_gauss_point_x(const gm_pde_grid *g, size_t i);
+void gm_pde_gauss_init(gm_pde *p);
+int gm_pde_gauss_kernel_ok(const gm_pde_equation *eq);
+gm_status gm_pde_gauss_step(gm_pde *p, gm_error *err);
 
 /* KdV (kdv.c): Zabusky–Kruskal on the scalar arrays u_prev, u, u_new, its stability bound
  * (the largest stable Δt), and the gauge-free invariants */

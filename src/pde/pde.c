@@ -30,6 +30,11 @@ void gm_pde_free(gm_pde *p) {
     for (int j = 0; j < 3; j++) free(p->tan[k][j]);
   free(p->msres);
   free(p->aux[0]);
+  free(p->gp_x);
+  free(p->gp_F);
+  free(p->gp_b);
+  free(p->gp_t[0]);
+  free(p->gp_t[1]);
   free(p->aux[1]);
   free(p->u_prev);
   free(p->u);
@@ -78,6 +83,20 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
     return gm_error_set(err, GM_EINVAL,
                         "pde: scheme '%s' needs a wave equation (s = (u, v, w) with V, dV)",
                         scheme->name);
+  if (scheme->kind == GM_PDE_GAUSS_PRK) {
+    if (n % 2 != 0)
+      return gm_error_set(err, GM_EINVAL, "pde: gauss-prk needs an even number of points "
+                          "(two Gauss points per cell; got n = %zu)", n);
+    for (size_t a = 0; a < d; a++)
+      if (grid->twist[a] != 0.0)
+        return gm_error_set(err, GM_EINVAL, "pde: gauss-prk does not take a twist");
+    if (!gm_pde_gauss_kernel_ok(eq))
+      return gm_error_set(err, GM_EINVAL, "pde: gauss-prk needs the kernel of K along "
+                          "coordinates (components whose row and column of K vanish)");
+    if (options->dirichlet_left != 0 || options->dirichlet_right != 0 || eq->has_gauge)
+      return gm_error_set(err, GM_EINVAL,
+                          "pde: gauss-prk is implemented for periodic grids without a gauge");
+  }
   if (scheme->kind == GM_PDE_KDV_ZK && !eq->is_kdv)
     return gm_error_set(err, GM_EINVAL, "pde: scheme 'zk' needs the KdV equation");
   if (eq->has_gauge && (eq->gauge_phi >= d || eq->gauge_u >= d || eq->gauge_phi == eq->gauge_u))
@@ -168,6 +187,19 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
     ok &= (p->u_prev = vec(n)) != NULL;
     ok &= (p->u = vec(n)) != NULL;
     ok &= (p->u_new = vec(n)) != NULL;
+  } else if (scheme->kind == GM_PDE_GAUSS_PRK) {
+    size_t nx = 3 * d * n; /* 6d per cell, n/2 cells */
+    ok &= gm_band_init(&p->band, nx, 18 * d - 1, 18 * d - 1) == GM_OK;
+    free(p->hess);
+    ok &= (p->hess = vec(2 * n * d * d)) != NULL;
+    ok &= (p->gp_x = vec(nx)) != NULL;
+    ok &= (p->gp_F = vec(nx)) != NULL;
+    ok &= (p->gp_b = vec(nx)) != NULL;
+    if (options->track_variations)
+      for (int k = 0; k < 2; k++) {
+        ok &= (p->gp_t[k] = vec(nx)) != NULL;
+        for (int j = 0; j < 3; j++) ok &= (p->tan[k][j] = vec(nu)) != NULL;
+      }
   } else if (!scheme->scalar) {
     ok &= gm_band_init(&p->band, nu, 3 * d - 1, 3 * d - 1) == GM_OK;
     if (scheme->kind == GM_PDE_BOX_SDIRK2)
@@ -217,6 +249,7 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
           p->tan[k][0][i * d + eq->gauge_u] = p->tan[k][1][i * d + eq->gauge_u] -= mean;
       }
   }
+  if (scheme->kind == GM_PDE_GAUSS_PRK) gm_pde_gauss_init(p);
   if (scheme->scalar || scheme->kind == GM_PDE_KDV_ZK) {
     st = scheme->scalar ? gm_pde_wave_start(p, err) : gm_pde_zk_start(p, err);
     if (st != GM_OK) {
@@ -277,7 +310,13 @@ static double quad_sum(const gm_pde *p, const double *M) {
   return sum;
 }
 
+double gm_pde_point_x(const gm_pde_scheme *scheme, const gm_pde_grid *grid, size_t i) {
+  if (scheme != NULL && scheme->kind == GM_PDE_GAUSS_PRK) return gm_pde_gauss_point_x(grid, i);
+  return grid->x0 + (double)i * grid->h;
+}
+
 double gm_pde_energy(const gm_pde *p) {
+  if (p->scheme->kind == GM_PDE_GAUSS_PRK && !p->eq.is_kdv) return NAN; /* not implemented */
   if (p->eq.is_kdv) return gm_pde_kdv_energy(p);
   if (p->scheme->scalar) return gm_pde_wave_energy(p);
   double e = 0.0;
@@ -286,6 +325,7 @@ double gm_pde_energy(const gm_pde *p) {
 }
 
 double gm_pde_momentum(const gm_pde *p) {
+  if (p->scheme->kind == GM_PDE_GAUSS_PRK && !p->eq.is_kdv) return NAN; /* not implemented */
   if (p->eq.is_kdv) return gm_pde_kdv_momentum(p);
   if (p->scheme->scalar) return gm_pde_wave_momentum(p);
   return p->grid.h * 0.5 * quad_sum(p, p->eq.W);
@@ -297,8 +337,8 @@ double gm_pde_norm(const gm_pde *p) {
   double sum = 0.0;
   for (size_t i = 0; i < n; i++) {
     const double *si = p->s + i * d, *sj = p->s + ((i + 1) % n) * d;
-    if (p->scheme->scalar) {
-      sum += si[a] * si[a] + si[b] * si[b];
+    if (p->scheme->scalar || p->scheme->kind == GM_PDE_GAUSS_PRK) {
+      sum += si[a] * si[a] + si[b] * si[b]; /* gauss-prk: Gauss quadrature, b_j H = h */
     } else {
       if (i == n - 1 && gm_pde_dirichlet(p)) break;
       double re = 0.5 * (si[a] + sj[a]), im = 0.5 * (si[b] + sj[b]);
@@ -341,7 +381,7 @@ static double node_quad(const gm_pde *p, const double *x0, const double *x1, siz
 }
 
 double gm_pde_cell_energy(const gm_pde *p) {
-  if (p == NULL || p->scheme->scalar) return NAN;
+  if (p == NULL || p->scheme->scalar || p->scheme->kind == GM_PDE_GAUSS_PRK) return NAN;
   size_t n = p->n, d = p->d;
   double e = 0.0, bar[GM_PDE_MAX_DIM];
   for (size_t i = 0; i + (gm_pde_dirichlet(p) ? 1 : 0) < n; i++) {
@@ -352,7 +392,7 @@ double gm_pde_cell_energy(const gm_pde *p) {
 }
 
 double gm_pde_cell_momentum(const gm_pde *p) {
-  if (p == NULL || p->scheme->scalar) return NAN;
+  if (p == NULL || p->scheme->scalar || p->scheme->kind == GM_PDE_GAUSS_PRK) return NAN;
   double m = 0.0;
   for (size_t i = 0; i + (gm_pde_dirichlet(p) ? 1 : 0) < p->n; i++)
     m += 0.5 * cell_quad(p, p->s, i, p->eq.W);
@@ -360,7 +400,8 @@ double gm_pde_cell_momentum(const gm_pde *p) {
 }
 
 gm_status gm_pde_local_residuals(const gm_pde *p, double *energy, double *momentum) {
-  if (p == NULL || p->scheme->scalar || p->scheme->kind == GM_PDE_KDV_ZK || p->steps == 0)
+  if (p == NULL || p->scheme->scalar || p->scheme->kind == GM_PDE_KDV_ZK ||
+      p->scheme->kind == GM_PDE_GAUSS_PRK || p->steps == 0)
     return GM_EUNSUPPORTED;
   size_t n = p->n, d = p->d;
   const double *x0 = p->s_prev, *x1 = p->s; /* sⁿ and sⁿ⁺¹ of the last step */
