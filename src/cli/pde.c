@@ -15,7 +15,7 @@ static const char usage[] =
     "                       [--dirichlet] [--out FILE.csv] [--vtk FILE.vti] ... (pde run --help)\n"
     "       geomint pde b10 [--out DIR] [--no-plot]\n"
     "       geomint pde nls-long [--periods P] [--n N] [--dt DT] [--every K] [--out DIR]\n"
-    "                            [--no-plot]\n"
+    "                            [--no-plot] [--only preissmann|box-sdirk2] [--plot-only]\n"
     "\n"
     "Sine-Gordon u_tt - u_xx + sin u = 0 on [-20, 20) periodic, started from the standing\n"
     "breather u = 4 atan((k/w) sin(w t) / cosh(k x)), k = sqrt(1 - w^2), at t = 0 (u = 0,\n"
@@ -28,7 +28,8 @@ static const char usage[] =
     "     phase periods 2 pi/(1 - pi^2/100) of the larger soliton (default 1e4; N 128, dt 0.1):\n"
     "     preissmann (multisymplectic) against box-sdirk2 (same box in space, SDIRK2 in time,\n"
     "     not symplectic); writes DIR/nls-long-*.dat (periods, |dE/E|, |dP/P|, |dN/N| every K\n"
-    "     steps) and DIR/nls-long.png.\n";
+    "     steps) and DIR/nls-long.png. --only runs one scheme; --plot-only draws the figure\n"
+    "     from the .dat files already in DIR (two --only runs in parallel, then the plot).\n";
 
 #define L_HALF 20.0
 

@@ -126,14 +126,17 @@ int cli_pde_nls_long(int argc, char **argv) {
   const char *dir = "pde-output";
   size_t n = 128, every = 0, n_pos = 0;
   double periods = 1e4, dt = 0.1;
-  int no_plot = 0;
-  cli_option options[] = {{"--periods", CLI_ARG_DOUBLE, &periods, 0},
+  int no_plot = 0, plot_only = 0;
+  const char *only = NULL;
+  cli_option options[] = {{"--only", CLI_ARG_STRING, &only, 0},
+                          {"--plot-only", CLI_ARG_FLAG, &plot_only, 0},
+                          {"--periods", CLI_ARG_DOUBLE, &periods, 0},
                           {"--n", CLI_ARG_COUNT, &n, 0},
                           {"--dt", CLI_ARG_DOUBLE, &dt, 0},
                           {"--every", CLI_ARG_COUNT, &every, 0},
                           {"--out", CLI_ARG_STRING, &dir, 0},
                           {"--no-plot", CLI_ARG_FLAG, &no_plot, 0}};
-  int rc = cli_parse("pde nls-long", argc, argv, options, 6, NULL, 0, &n_pos);
+  int rc = cli_parse("pde nls-long", argc, argv, options, 8, NULL, 0, &n_pos);
   if (rc != CLI_EXIT_OK) return rc == CLI_HELP ? CLI_EXIT_OK : rc;
   if (cli_check_positive("pde nls-long", "--dt", dt) != CLI_EXIT_OK ||
       cli_check_positive("pde nls-long", "--periods", periods) != CLI_EXIT_OK ||
@@ -155,14 +158,24 @@ int cli_pde_nls_long(int argc, char **argv) {
     cli_error("pde nls-long", "cannot create the directory '%s': %s", dir, strerror(errno));
     return CLI_EXIT_FAILURE;
   }
+  if (only != NULL && strcmp(only, "preissmann") != 0 && strcmp(only, "box-sdirk2") != 0) {
+    cli_error("pde nls-long", "--only takes preissmann or box-sdirk2 (got '%s')", only);
+    return CLI_EXIT_USAGE;
+  }
+  if (plot_only && no_plot) {
+    cli_error("pde nls-long", "--plot-only and --no-plot exclude each other");
+    return CLI_EXIT_USAGE;
+  }
   size_t steps = (size_t)llround(periods * NLS_PERIOD / dt);
   if (steps < 10) steps = 10;
   if (every == 0) every = steps / 2000 > 0 ? steps / 2000 : 1;
-  printf("NLS two-soliton collision (a = 1, 0.8; c = +-pi/5) on [-20, 20), n = %zu, dt = %g, "
+  if (!plot_only)
+    printf("NLS two-soliton collision (a = 1, 0.8; c = +-pi/5) on [-20, 20), n = %zu, dt = %g, "
          "%g periods (%.4g time units, %zu steps)\n",
          n, dt, periods, (double)steps * dt, steps);
   const char *names[2] = {"preissmann", "box-sdirk2"};
-  for (int k = 0; k < 2; k++) {
+  for (int k = 0; k < 2 && !plot_only; k++) {
+    if (only != NULL && strcmp(only, names[k]) != 0) continue;
     char path[4200];
     snprintf(path, sizeof path, "%s/nls-long-%s.dat", dir, names[k]);
     nls_long_result r;

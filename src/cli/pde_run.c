@@ -75,8 +75,9 @@ static const char run_usage[] =
     "  nls          i psi_t + psi_xx + 2|psi|^2 psi = 0, soliton a = 1, c = pi/10; T 2\n"
     "--n points (default 200), --dt (default 0.1). --dirichlet (sine-gordon): the ends held,\n"
     "the points spanning [-20, 20]. Prints energy, momentum and the max error at T; --out\n"
-    "writes x, the state and the exact value at T as CSV; --vtk writes a space-time VTK image\n"
-    "(cell data u, exact, error; x along the first axis, t along the second, M + 1 rows).\n";
+    "writes x (for gauss-prk its Gauss points), the state and the exact value at T as CSV;\n"
+    "--vtk writes a space-time VTK image (cell data u, exact, error; x along the first axis,\n"
+    "t along the second, M + 1 rows; gauss-prk's points drawn as uniform cells).\n";
 
 int cli_pde_run(int argc, char **argv) {
   const char *scheme_name = NULL, *out = NULL, *vtk = NULL, *positional[1] = {NULL};
@@ -153,7 +154,7 @@ int cli_pde_run(int argc, char **argv) {
     cli_error("pde run", "out of memory");
     return CLI_EXIT_FAILURE;
   }
-  for (size_t i = 0; i < n; i++) e->exact(-RUN_L + (double)i * h, 0.0, &q, s0 + i * d);
+  for (size_t i = 0; i < n; i++) e->exact(gm_pde_point_x(scheme, &g, i), 0.0, &q, s0 + i * d);
   if (eq.has_gauge) { /* φ by the trapezoidal rule, its twist the discrete mass */
     double tw = 0.0;
     for (size_t i = 0; i < n; i++) {
@@ -185,7 +186,7 @@ int cli_pde_run(int argc, char **argv) {
     if (rows != NULL && row < n_rows) {
       const double *s = gm_pde_state(p);
       for (size_t i = 0; i < n; i++) {
-        e->exact(-RUN_L + (double)i * h, gm_pde_time(p), &q, ex);
+        e->exact(gm_pde_point_x(scheme, &g, i), gm_pde_time(p), &q, ex);
         double *r = rows + 3 * n * row;
         r[i] = shown(e, s + i * d);
         r[n + i] = shown(e, ex);
@@ -205,7 +206,7 @@ int cli_pde_run(int argc, char **argv) {
   const double *s = gm_pde_state(p);
   double t = gm_pde_time(p), emax = 0.0;
   for (size_t i = 0; rc == CLI_EXIT_OK && i < n; i++) {
-    e->exact(-RUN_L + (double)i * h, t, &q, ex);
+    e->exact(gm_pde_point_x(scheme, &g, i), t, &q, ex);
     emax = fmax(emax, strcmp(e->name, "nls") == 0
                           ? hypot(s[i * d] - ex[0], s[i * d + 1] - ex[1])
                           : fabs(shown(e, s + i * d) - shown(e, ex)));
@@ -213,9 +214,13 @@ int cli_pde_run(int argc, char **argv) {
   if (rc == CLI_EXIT_OK) {
     printf("pde run %s --scheme %s: n %zu, dx %g, dt %g, %zu steps to t = %g%s\n", e->name,
            scheme->name, n, h, dt, steps, t, dirichlet ? ", Dirichlet ends" : "");
-    printf("  energy %.15g (relative change %.3e)\n", gm_pde_energy(p),
-           fabs(gm_pde_energy(p) - e0) / fabs(e0));
-    printf("  momentum %.6e (change %.3e)\n", gm_pde_momentum(p), gm_pde_momentum(p) - m0);
+    if (isfinite(e0)) {
+      printf("  energy %.15g (relative change %.3e)\n", gm_pde_energy(p),
+             fabs(gm_pde_energy(p) - e0) / fabs(e0));
+      printf("  momentum %.6e (change %.3e)\n", gm_pde_momentum(p), gm_pde_momentum(p) - m0);
+    } else {
+      printf("  energy and momentum: no monitor for %s\n", scheme->name);
+    }
     if (eq.has_gauge) printf("  mass %.15g\n", gm_pde_mass(p));
     if (eq.has_norm) printf("  charge %.15g\n", gm_pde_norm(p));
     printf("  max |%s - exact| %.3e\n", strcmp(e->name, "nls") == 0 ? "psi" : "u", emax);
@@ -233,7 +238,7 @@ int cli_pde_run(int argc, char **argv) {
       for (size_t a = 0; a < d; a++) fprintf(f, ",%s", cols[which][a]);
       fprintf(f, ",exact\n");
       for (size_t i = 0; i < n; i++) {
-        double x = -RUN_L + (double)i * h;
+        double x = gm_pde_point_x(scheme, &g, i);
         e->exact(x, t, &q, ex);
         fprintf(f, "%.10g", x);
         for (size_t a = 0; a < d; a++) fprintf(f, ",%.17g", s[i * d + a]);
