@@ -111,7 +111,7 @@ static void nls_plot_body(FILE *g, const void *ctx) {
   static const char *what[3] = {"energy", "momentum", "charge"};
   fprintf(g, "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1500,520 "
              "font 'sans,10' }\n");
-  fprintf(g, "set logscale y\nset xlabel 'periods'\nset key center right\nset format y '%%.0e'\n"
+  fprintf(g, "set logscale y\nset xlabel 'periods'\nset key below\nset format y '%%.0e'\n"
              "set multiplot layout 1,3\n");
   for (int k = 0; k < 3; k++)
     fprintf(g,
