@@ -162,7 +162,9 @@ double gm_pde_point_x(const gm_pde_scheme *scheme, const gm_pde_grid *grid, size
  * even n: the checkerboard (−1)^i c with 𝕂c = 0 is annihilated by the two-point averages; see
  * docs/pde.md), h or Δt not
  * finite and > 0, a scalar scheme with an equation without V, an LF step with Δt > Δx (the
- * CFL bound of its explicit wave part), non-finite initial data (GM_EDOMAIN). */
+ * CFL bound of its explicit wave part), a zk step above its stability bound (see kdv.c), odd n
+ * for gauss-prk, an equation with a gauge whose twist is not its mass h Σ ū, bad Dirichlet
+ * masks (see gm_pde_options), non-finite initial data (GM_EDOMAIN). */
 gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
                         const gm_pde_scheme *scheme, const gm_pde_options *options,
                         const double *s0, gm_pde **out, gm_error *err);

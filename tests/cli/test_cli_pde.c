@@ -38,7 +38,9 @@ Test(cli_pde, bad_input_exits_2) {
                          "pde run sine-gordon --scheme preissmann --n 200",
                          "pde run sine-gordon --dt -1", "pde run sine-gordon --scheme box",
                          "pde run kdv --scheme zk --dt 0.01", "pde run kdv --c nan",
-                         "pde run burgers", "pde run nls --dt 0", "pde"};
+                         "pde run burgers", "pde run nls --dt 0",
+                         "pde run sine-gordon --scheme gauss-prk --n 201",
+                         "pde run kdv --scheme euler-box", "pde nls-long --only lf", "pde"};
   for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
     run_output r = run_cli("%s", cases[k]);
     cr_assert_eq(r.status, 2, "'%s' exited %d: %s", cases[k], r.status, r.err);
