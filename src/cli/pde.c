@@ -1,5 +1,5 @@
-/* geomint pde: multisymplectic PDE integrators (src/pde). `run` integrates sine-Gordon from a
- * breather and writes the final state as CSV; `b10` is seed 004's stability experiment
+/* geomint pde: multisymplectic PDE integrators (src/pde). `run` (pde_run.c) integrates one
+ * equation from its exact solution; `b10` is seed 004's stability experiment
  * (Figs. 11–13): LF/EC/MS at Δt = Δx and EC/MS at Δt = 2Δx, with one figure. */
 #include <errno.h>
 #include <math.h>
@@ -12,19 +12,25 @@
 #include "cli/pde_spectral.h"
 
 static const char usage[] =
-    "usage: geomint pde run sine-gordon [--scheme NAME] [--n N] [--dt DT] [--T T] [--omega W]\n"
-    "                                   [--out FILE.csv]\n"
+    "usage: geomint pde run sine-gordon|kdv|nls [--scheme NAME] [--n N] [--dt DT] [--T T]\n"
+    "                       [--dirichlet] [--out FILE.csv] [--vtk FILE.vti] ... (pde run --help)\n"
     "       geomint pde b10 [--out DIR] [--no-plot]\n"
+    "       geomint pde nls-long [--periods P] [--n N] [--dt DT] [--every K] [--out DIR]\n"
+    "                            [--no-plot] [--only preissmann|box-sdirk2] [--plot-only]\n"
     "\n"
     "Sine-Gordon u_tt - u_xx + sin u = 0 on [-20, 20) periodic, started from the standing\n"
     "breather u = 4 atan((k/w) sin(w t) / cosh(k x)), k = sqrt(1 - w^2), at t = 0 (u = 0,\n"
     "u_t = 4k sech(kx)); default w = 0.5.\n"
-    "run: schemes preissmann (odd N), euler-box, lf, ec, ms (default ms, N 200, dt 0.1, T 10);\n"
-    "     prints energy, momentum and the max error against the exact breather; --out writes\n"
-    "     x,u,v,w,exact at T.\n"
+    "run: one scheme from the exact solution (breather, KdV or NLS soliton); see pde run --help.\n"
     "b10: N = 200 (dx = 0.2): LF, EC, MS with dt = dx up to t = 500, EC and MS with dt = 2 dx\n"
     "     up to t = 100; a run that leaves |u| <= 100 or fails stops there. Writes\n"
-    "     DIR/b10-*.dat and draws DIR/b10.png (running max of max|u| against t).\n";
+    "     DIR/b10-*.dat and draws DIR/b10.png (running max of max|u| against t).\n"
+    "nls-long: NLS two-soliton collision (a = 1, 0.8, c = +-pi/5, [-20, 20) periodic) over P\n"
+    "     phase periods 2 pi/(1 - pi^2/100) of the larger soliton (default 1e4; N 128, dt 0.1):\n"
+    "     preissmann (multisymplectic) against box-sdirk2 (same box in space, SDIRK2 in time,\n"
+    "     not symplectic); writes DIR/nls-long-*.dat (periods, |dE/E|, |dP/P|, |dN/N| every K\n"
+    "     steps) and DIR/nls-long.png. --only runs one scheme; --plot-only draws the figure\n"
+    "     from the .dat files already in DIR (two --only runs in parallel, then the plot).\n";
 
 #define L_HALF 20.0
 
@@ -34,11 +40,6 @@ static double *breather_data(size_t n, double omega) {
   if (s == NULL) return NULL;
   for (size_t i = 0; i < n; i++) s[3 * i + 1] = 4.0 * k / cosh(k * (-L_HALF + (double)i * h));
   return s;
-}
-
-static double breather(double x, double t, double omega) {
-  double k = sqrt(1.0 - omega * omega);
-  return 4.0 * atan(k / omega * sin(omega * t) / cosh(k * x));
 }
 
 static int make_solver(const char *cmd, const char *scheme_name, size_t n, double dt,
@@ -64,79 +65,6 @@ static int make_solver(const char *cmd, const char *scheme_name, size_t n, doubl
     cli_error(cmd, "%s", err.message);
     return st == GM_ENOMEM ? CLI_EXIT_FAILURE : CLI_EXIT_USAGE;
   }
-  return CLI_EXIT_OK;
-}
-
-static int pde_run(int argc, char **argv) {
-  const char *scheme = "ms", *out = NULL, *positional[1] = {NULL};
-  size_t n = 200, n_pos = 0;
-  double dt = 0.1, T = 10.0, omega = 0.5;
-  cli_option options[] = {{"--scheme", CLI_ARG_STRING, &scheme, 0},
-                          {"--n", CLI_ARG_COUNT, &n, 0},
-                          {"--dt", CLI_ARG_DOUBLE, &dt, 0},
-                          {"--T", CLI_ARG_DOUBLE, &T, 0},
-                          {"--omega", CLI_ARG_DOUBLE, &omega, 0},
-                          {"--out", CLI_ARG_STRING, &out, 0}};
-  int rc = cli_parse("pde run", argc, argv, options, 6, positional, 1, &n_pos);
-  if (rc == CLI_HELP) {
-    fputs(usage, stdout);
-    return CLI_EXIT_OK;
-  }
-  if (rc != CLI_EXIT_OK) return rc;
-  if (n_pos != 1 || strcmp(positional[0], "sine-gordon") != 0) {
-    cli_error("pde run", "which equation? sine-gordon");
-    return CLI_EXIT_USAGE;
-  }
-  if (cli_check_positive("pde run", "--dt", dt) != CLI_EXIT_OK ||
-      cli_check_positive("pde run", "--T", T) != CLI_EXIT_OK ||
-      cli_check_step_count("pde run", T, dt) != CLI_EXIT_OK)
-    return CLI_EXIT_USAGE;
-  if (!(omega > 0.0 && omega < 1.0)) {
-    cli_error("pde run", "--omega must lie in (0, 1) (got %g)", omega);
-    return CLI_EXIT_USAGE;
-  }
-  if (n > 100000000) {
-    cli_error("pde run", "--n %zu is too large", n);
-    return CLI_EXIT_USAGE;
-  }
-  gm_pde *p = NULL;
-  if ((rc = make_solver("pde run", scheme, n, dt, omega, &p)) != CLI_EXIT_OK) return rc;
-  double e0 = gm_pde_energy(p), m0 = gm_pde_momentum(p);
-  size_t steps = (size_t)llround(T / dt);
-  gm_error err = {{0}};
-  gm_status st = gm_pde_advance(p, steps, &err);
-  if (st != GM_OK) {
-    cli_error("pde run", "%s", err.message);
-    gm_pde_free(p);
-    return CLI_EXIT_FAILURE;
-  }
-  const double *s = gm_pde_state(p);
-  double h = 2.0 * L_HALF / (double)n, t = gm_pde_time(p), e = 0.0;
-  for (size_t i = 0; i < n; i++)
-    e = fmax(e, fabs(s[3 * i] - breather(-L_HALF + (double)i * h, t, omega)));
-  printf("pde run sine-gordon --scheme %s: n %zu, dx %g, dt %g, %zu steps to t = %g\n", scheme,
-         n, h, dt, steps, t);
-  printf("  energy %.15g (relative change %.3e)\n", gm_pde_energy(p),
-         fabs(gm_pde_energy(p) - e0) / fabs(e0));
-  printf("  momentum %.6e (change %.3e)\n", gm_pde_momentum(p), gm_pde_momentum(p) - m0);
-  printf("  max |u - breather| %.3e\n", e);
-  if (out != NULL) {
-    FILE *f = fopen(out, "w");
-    if (f == NULL) {
-      cli_error("pde run", "cannot write '%s': %s", out, strerror(errno));
-      gm_pde_free(p);
-      return CLI_EXIT_FAILURE;
-    }
-    fprintf(f, "x,u,v,w,exact\n");
-    for (size_t i = 0; i < n; i++) {
-      double x = -L_HALF + (double)i * h;
-      fprintf(f, "%.10g,%.17g,%.17g,%.17g,%.17g\n", x, s[3 * i], s[3 * i + 1], s[3 * i + 2],
-              breather(x, t, omega));
-    }
-    fclose(f);
-    printf("  state written to %s\n", out);
-  }
-  gm_pde_free(p);
   return CLI_EXIT_OK;
 }
 
@@ -275,8 +203,19 @@ static int pde_b10(int argc, char **argv) {
   return no_plot ? CLI_EXIT_OK : b10_plot(dir);
 }
 
+int cli_pde_nls_long(int argc, char **argv); /* pde_nls.c */
+int cli_pde_run(int argc, char **argv);      /* pde_run.c */
+
 static int pde_main(int argc, char **argv) {
-  if (argc >= 1 && strcmp(argv[0], "run") == 0) return pde_run(argc - 1, argv + 1);
+  if (argc >= 1 && strcmp(argv[0], "nls-long") == 0) {
+    for (int k = 1; k < argc; k++)
+      if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
+        fputs(usage, stdout);
+        return CLI_EXIT_OK;
+      }
+    return cli_pde_nls_long(argc - 1, argv + 1);
+  }
+  if (argc >= 1 && strcmp(argv[0], "run") == 0) return cli_pde_run(argc - 1, argv + 1);
   if (argc >= 1 && strcmp(argv[0], "b10") == 0) return pde_b10(argc - 1, argv + 1);
   if (argc >= 1 && strcmp(argv[0], "schrodinger") == 0)
     return cli_pde_schrodinger(argc - 1, argv + 1);
@@ -288,8 +227,8 @@ static int pde_main(int argc, char **argv) {
     fputs(cli_pde_spectral_usage, stdout);
     return CLI_EXIT_OK;
   }
-  cli_error("pde",
-            "which subcommand? run, b10, schrodinger, spectral-star or tent-vi (see --help)");
+  cli_error("pde", "which subcommand? run, b10, nls-long, schrodinger, spectral-star or tent-vi "
+            "(see geomint pde --help)");
   return CLI_EXIT_USAGE;
 }
 

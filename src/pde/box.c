@@ -14,11 +14,17 @@ static int wp_row(const gm_pde *p, size_t a) {
   return 0;
 }
 
+/* the row replaced by the gauge condition φ₀ⁿ⁺¹ = φ₀ⁿ (equations with a potential) */
+static int gauge_row(const gm_pde *p, size_t i, size_t a) {
+  return p->eq.has_gauge && i == 0 && a == p->eq.gauge_phi;
+}
+
 /* band(row block i, column block j) += c·M (d×d, row-major) */
 static void add_block(gm_pde *p, size_t i, size_t j, const double *M, double c) {
   size_t d = p->d;
   for (size_t a = 0; a < d; a++)
     for (size_t b = 0; b < d; b++)
+      if (!gauge_row(p, i, a))
       if (M[a * d + b] != 0.0)
         gm_band_add(&p->band, p->pos[i] * d + a, p->pos[j] * d + b, c * M[a * d + b]);
 }
@@ -77,6 +83,29 @@ static void preissmann_residual(gm_pde *p, const double *x, double *F) {
     matvec_add(d, p->eq.W, 1.0, tdiff, Fi);
     matvec_add(d, p->eq.K, 1.0, xdiff, Fi);
   }
+  /* KdV-like equations: the φ row at point 0 is implied by the others (the sum of the w rows
+   * minus Δt times the sum of the φ rows vanishes identically once h Σ ū = twist, which
+   * create checks and the scheme keeps); it is replaced by the gauge φ₀ⁿ⁺¹ = φ₀ⁿ */
+  if (p->eq.has_gauge) F[p->eq.gauge_phi] = x[p->eq.gauge_phi] - p->s[p->eq.gauge_phi];
+  if (gm_pde_dirichlet(p)) {
+    /* no cell n−1: its d rows hold the Dirichlet components, xᵃ = sᵃ at the ends */
+    size_t k = 0, nd = (n - 1) * d;
+    for (size_t a = 0; a < d; a++)
+      if (p->opt.dirichlet_left & (1u << a)) F[nd + k++] = x[a] - p->s[a];
+    for (size_t a = 0; a < d; a++)
+      if (p->opt.dirichlet_right & (1u << a)) F[nd + k++] = x[nd + a] - p->s[nd + a];
+  }
+}
+
+/* the Dirichlet rows of block n−1 in the Newton matrix (identity on the held components) */
+static void dirichlet_rows(gm_pde *p) {
+  size_t n = p->n, d = p->d, k = 0;
+  for (size_t a = 0; a < d; a++)
+    if (p->opt.dirichlet_left & (1u << a))
+      gm_band_add(&p->band, p->pos[n - 1] * d + k++, p->pos[0] * d + a, 1.0);
+  for (size_t a = 0; a < d; a++)
+    if (p->opt.dirichlet_right & (1u << a))
+      gm_band_add(&p->band, p->pos[n - 1] * d + k++, p->pos[n - 1] * d + a, 1.0);
 }
 
 /* Hessians at the cell midpoints into p->hess, then the Newton matrix ∂F/∂sⁿ⁺¹ (factored) */
@@ -87,6 +116,10 @@ static gm_status preissmann_jacobian(gm_pde *p, const double *x) {
   gm_band_zero(&p->band);
   for (size_t i = 0; i < n; i++) {
     size_t j = (i + 1) % n;
+    if (i == n - 1 && gm_pde_dirichlet(p)) {
+      dirichlet_rows(p);
+      break;
+    }
     for (size_t a = 0; a < d; a++)
       m[a] = 0.25 * (x[i * d + a] + gm_pde_at(p, x, i, 1, a) + p->s[i * d + a] +
                      gm_pde_at(p, p->s, i, 1, a));
@@ -99,6 +132,8 @@ static gm_status preissmann_jacobian(gm_pde *p, const double *x) {
     add_block(p, i, j, p->eq.K, 0.5 / h);
     add_block(p, i, j, H, -0.25);
   }
+  if (p->eq.has_gauge) gm_band_add(&p->band, p->pos[0] * d + p->eq.gauge_phi,
+                                   p->pos[0] * d + p->eq.gauge_phi, 1.0);
   p->stats.factorizations++;
   return gm_band_factor(&p->band);
 }
@@ -198,7 +233,26 @@ static void preissmann_tangents(gm_pde *p) {
       matvec_add(d, p->eq.K, -0.5 / h, U + j * d, Ri);
       matvec_add(d, H, 0.25, U + j * d, Ri);
     }
+    if (p->eq.has_gauge) R[p->eq.gauge_phi] = U[p->eq.gauge_phi]; /* the pinned gauge */
+    if (gm_pde_dirichlet(p)) { /* held components keep their (zero) variations */
+      size_t q = 0, nd = (n - 1) * d;
+      for (size_t a = 0; a < d; a++)
+        if (p->opt.dirichlet_left & (1u << a)) R[nd + q++] = U[a];
+      for (size_t a = 0; a < d; a++)
+        if (p->opt.dirichlet_right & (1u << a)) R[nd + q++] = U[nd + a];
+    }
     band_solve_natural(p, R, p->tan[k][2]);
+    if (p->eq.has_gauge) {
+      /* The φ row of point 0 is dropped (gauge), so it holds only through the others: up to
+       * the sum of their round-off, n·ε, and the variation's mass Σ δu (zero in exact
+       * arithmetic) random-walks by as much each step. Taking its mean out again (a change
+       * of O(ε|U|)) keeps that row at the round-off of one step. */
+      double *U1 = p->tan[k][2], mean = 0.0;
+      size_t gu = p->eq.gauge_u;
+      for (size_t i = 0; i < n; i++) mean += U1[i * d + gu];
+      mean /= (double)n;
+      for (size_t i = 0; i < n; i++) U1[i * d + gu] -= mean;
+    }
   }
   /* (ω^{n+1}_{i+½} − ωⁿ_{i+½})/Δt + (κ^{n+½}_{i+1} − κ^{n+½}_i)/Δx with ω = V̄ᵀ𝕎Ū (space
    * averages), κ = (V^{n+½})ᵀ𝕂U^{n+½} (time averages) */
@@ -222,6 +276,7 @@ static void preissmann_tangents(gm_pde *p) {
     double scale = fabs(w1) + fabs(w0) + fabs(k1) + fabs(k0);
     p->msres[i] = scale > 0.0 ? fabs(w1 - w0 + k1 - k0) / scale : 0.0;
   }
+  if (gm_pde_dirichlet(p)) p->msres[n - 1] = 0.0; /* no cell past the right end */
   p->ms_valid = 1;
 }
 
@@ -270,7 +325,107 @@ static void euler_tangents(gm_pde *p) {
   }
 }
 
+/* ---- SDIRK2 on the box semi-discretisation (not symplectic; the comparison row):
+ * the Preissmann box's space part 𝕎 M_x s_t + 𝕂 D_x s = ∇S(M_x s) (M_x the two-point average,
+ * D_x the difference over cell i+½) integrated in time by Alexander's two-stage L-stable,
+ * stiffly accurate SDIRK of order 2 (R. Alexander, SIAM J. Numer. Anal. 14 (1977) 1006, the
+ * s = 2 method: γ = 1 − 1/√2, A = [γ 0; 1−γ γ], b = (1−γ, γ)). A stage solves
+ *   𝕎 M_x (X − B)/(γΔt) + 𝕂 D_x X − ∇S(M_x X) = 0
+ * with B = sⁿ (stage 1) and B = sⁿ + ((1−γ)/γ)(X₁ − sⁿ) (stage 2); sⁿ⁺¹ = X₂. -------------- */
+#define SDIRK_GAMMA 0.29289321881345247560 /* 1 − 1/√2 */
+
+static void dirk_residual(gm_pde *p, const double *x, const double *B, double *F) {
+  size_t n = p->n, d = p->d;
+  double cw = 1.0 / (SDIRK_GAMMA * p->opt.dt), h = p->grid.h;
+  double *m = p->work, *g = p->work + d;
+  for (size_t i = 0; i < n; i++) {
+    double t[GM_PDE_MAX_DIM], xd[GM_PDE_MAX_DIM];
+    for (size_t a = 0; a < d; a++) {
+      double xj = gm_pde_at(p, x, i, 1, a), bj = gm_pde_at(p, B, i, 1, a);
+      m[a] = 0.5 * (x[i * d + a] + xj);
+      t[a] = 0.5 * ((x[i * d + a] - B[i * d + a]) + (xj - bj)) * cw;
+      xd[a] = (xj - x[i * d + a]) / h;
+    }
+    p->eq.gradient(m, g, p->eq.params);
+    p->stats.gradient_evaluations++;
+    double *Fi = F + i * d;
+    for (size_t a = 0; a < d; a++) Fi[a] = -g[a];
+    matvec_add(d, p->eq.W, 1.0, t, Fi);
+    matvec_add(d, p->eq.K, 1.0, xd, Fi);
+  }
+}
+
+static gm_status dirk_jacobian(gm_pde *p, const double *x) {
+  size_t n = p->n, d = p->d;
+  double cw = 1.0 / (SDIRK_GAMMA * p->opt.dt), h = p->grid.h;
+  double *m = p->work;
+  gm_band_zero(&p->band);
+  for (size_t i = 0; i < n; i++) {
+    size_t j = (i + 1) % n;
+    for (size_t a = 0; a < d; a++) m[a] = 0.5 * (x[i * d + a] + gm_pde_at(p, x, i, 1, a));
+    double *H = p->hess + i * d * d;
+    gm_pde_hessian(p, m, H, p->work + d);
+    add_block(p, i, i, p->eq.W, 0.5 * cw);
+    add_block(p, i, i, p->eq.K, -1.0 / h);
+    add_block(p, i, i, H, -0.5);
+    add_block(p, i, j, p->eq.W, 0.5 * cw);
+    add_block(p, i, j, p->eq.K, 1.0 / h);
+    add_block(p, i, j, H, -0.5);
+  }
+  p->stats.factorizations++;
+  return gm_band_factor(&p->band);
+}
+
+/* Newton for one stage, x the initial guess and the result */
+static gm_status dirk_stage(gm_pde *p, const double *B, double *x, gm_error *err) {
+  size_t nu = p->nu;
+  double last = INFINITY;
+  size_t it;
+  for (it = 0; it < p->opt.newton_max_iter; it++) {
+    dirk_residual(p, x, B, p->F);
+    if (!isfinite(maxabs(p->F, nu)))
+      return gm_error_set(err, GM_EDOMAIN, "pde %s: non-finite residual at step %zu",
+                          p->scheme->name, p->steps + 1);
+    if (dirk_jacobian(p, x) != GM_OK)
+      return gm_error_set(err, GM_ESINGULAR, "pde %s: singular Newton matrix at step %zu",
+                          p->scheme->name, p->steps + 1);
+    for (size_t k = 0; k < nu; k++) p->F[k] = -p->F[k];
+    band_solve_natural(p, p->F, p->F);
+    for (size_t k = 0; k < nu; k++) x[k] += p->F[k];
+    p->stats.newton_iterations++;
+    double prev = last, scale = 1.0 + maxabs(x, nu);
+    last = maxabs(p->F, nu);
+    if (last <= p->opt.newton_tol * scale) break;
+    if (last <= 1e-9 * scale && last >= 0.5 * prev) break;
+  }
+  if (it == p->opt.newton_max_iter || !isfinite(last))
+    return gm_error_set(err, isfinite(last) ? GM_ENOCONV : GM_EDOMAIN,
+                        "pde %s: Newton did not converge at step %zu (max|ds| = %g)",
+                        p->scheme->name, p->steps + 1, last);
+  if (last > p->stats.max_newton_residual) p->stats.max_newton_residual = last;
+  return GM_OK;
+}
+
+static gm_status sdirk_step(gm_pde *p, gm_error *err) {
+  size_t nu = p->nu;
+  double *x1 = p->aux[0], *B = p->aux[1], *x = p->s_new;
+  memcpy(x1, p->s, nu * sizeof *x1);
+  gm_status st = dirk_stage(p, p->s, x1, err);
+  if (st != GM_OK) return st;
+  double c = (1.0 - SDIRK_GAMMA) / SDIRK_GAMMA;
+  for (size_t k = 0; k < nu; k++) B[k] = p->s[k] + c * (x1[k] - p->s[k]);
+  memcpy(x, x1, nu * sizeof *x);
+  if ((st = dirk_stage(p, B, x, err)) != GM_OK) return st;
+  double *tmp = p->s_prev;
+  p->s_prev = p->s;
+  p->s = x;
+  p->s_new = tmp;
+  return GM_OK;
+}
+
 gm_status gm_pde_box_step(gm_pde *p, gm_error *err) {
+  if (p->scheme->kind == GM_PDE_BOX_SDIRK2) return sdirk_step(p, err);
+  if (p->scheme->kind == GM_PDE_GAUSS_PRK) return gm_pde_gauss_step(p, err);
   size_t nu = p->nu;
   int pre = p->scheme->kind == GM_PDE_PREISSMANN;
   double *x = p->s_new;

@@ -165,6 +165,19 @@ static const gm_pde_scheme schemes[] = {
      "the Preissmann law with v, w eliminated",
      "seed 004 sine-Gordon scheme MS, nine-point standard form [R]: A_x δ_t²u − A_t δ_x²u + "
      "¼ΣV'(ū) = 0 (notes/003-004 §2.2; Bridges & Reich 2001)"},
+    {"zk", GM_PDE_KDV_ZK, 2, 2, 0, 0, 1, 0,
+     "none exact; h Σ u conserved on each level, h Σ u² by the semi-discretisation",
+     "Zabusky & Kruskal, Phys. Rev. Lett. 15 (1965) 240, eq. (2): leapfrog with "
+     "(u_{i+1}+u_i+u_{i-1})/3 in the convective term; KdV only"},
+    {"box-sdirk2", GM_PDE_BOX_SDIRK2, 2, 2, 0, 0, 0, 0,
+     "none (dissipative in time: the comparison for the long runs)",
+     "the Preissmann box's space part W M_x s_t + K D_x s = grad S(M_x s) with Alexander's "
+     "2-stage SDIRK of order 2 (gamma = 1 - 1/sqrt 2; SIAM J. Numer. Anal. 14 (1977) 1006)"},
+    {"gauss-prk", GM_PDE_GAUSS_PRK, 4, 4, 1, 0, 0, 0,
+     "H Σ_j b_j (ω_j^{n+1} − ω_j^n) + Δt Σ_i b_i (κ_{m+1,i} − κ_{m,i}) = 0 per cell (Gauss "
+     "points z_j, nodes Y_i)",
+     "2-stage Gauss–Legendre in t and x: S. Reich, J. Comput. Phys. 157 (2000) 473, "
+     "eqs. (3.1)–(3.6); Bridges & Reich, J. Phys. A 39 (2006) §4.2"},
 };
 #define N_SCHEMES (sizeof schemes / sizeof schemes[0])
 

@@ -47,6 +47,10 @@ struct gm_pde {
   gm_band band;
   /* tangent variations U (k = 0) and V (k = 1): prev, cur, new (owned, nu each) */
   double *tan[2][3];
+  double *aux[2]; /* box-sdirk2: stage 1 and the stage-2 base point (owned, nu each) */
+  /* gauss-prk (gauss_prk.c): Newton unknowns (Z, Y) per cell, residual, band scratch, and the
+   * tangents' (δZ, δY); 6d·n/2 each, owned */
+  double *gp_x, *gp_F, *gp_b, *gp_t[2];
   double *msres; /* per-cell relative multisymplectic residual of the last step (owned) */
   int ms_valid;
   /* scalar wave schemes: u^{n−1}, u^n, u^{n+1} (owned, n each) */
@@ -55,6 +59,10 @@ struct gm_pde {
   size_t n_observers;
   gm_pde_stats stats;
 };
+
+static inline int gm_pde_dirichlet(const gm_pde *p) {
+  return p->opt.dirichlet_left != 0 || p->opt.dirichlet_right != 0;
+}
 
 /* Component a of point i + shift (shift in {−1, 0, 1}) of a state x on the twisted ring:
  * x_{i+n} = x_i + twist. */
@@ -84,5 +92,20 @@ gm_status gm_pde_wave_start(gm_pde *p, gm_error *err); /* u¹ from u⁰, u_t */
 void gm_pde_wave_fill_state(gm_pde *p);
 double gm_pde_wave_energy(const gm_pde *p);
 double gm_pde_wave_momentum(const gm_pde *p);
+
+/* gauss-prk (gauss_prk.c) */
+double gm_pde_gauss_point_x(const gm_pde_grid *g, size_t i);
+void gm_pde_gauss_init(gm_pde *p);
+int gm_pde_gauss_kernel_ok(const gm_pde_equation *eq);
+gm_status gm_pde_gauss_step(gm_pde *p, gm_error *err);
+
+/* KdV (kdv.c): Zabusky–Kruskal on the scalar arrays u_prev, u, u_new, its stability bound
+ * (the largest stable Δt), and the gauge-free invariants */
+gm_status gm_pde_zk_start(gm_pde *p, gm_error *err);
+gm_status gm_pde_zk_step(gm_pde *p, gm_error *err);
+void gm_pde_zk_fill_state(gm_pde *p);
+double gm_pde_zk_bound(const gm_pde_grid *g, double umax);
+double gm_pde_kdv_energy(const gm_pde *p);
+double gm_pde_kdv_momentum(const gm_pde *p);
 
 #endif

@@ -29,6 +29,13 @@ void gm_pde_free(gm_pde *p) {
   for (int k = 0; k < 2; k++)
     for (int j = 0; j < 3; j++) free(p->tan[k][j]);
   free(p->msres);
+  free(p->aux[0]);
+  free(p->gp_x);
+  free(p->gp_F);
+  free(p->gp_b);
+  free(p->gp_t[0]);
+  free(p->gp_t[1]);
+  free(p->aux[1]);
   free(p->u_prev);
   free(p->u);
   free(p->u_new);
@@ -66,7 +73,8 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
   int kpiv[GM_PDE_MAX_DIM];
   memcpy(kcopy, eq->K, d * d * sizeof *kcopy);
   int k_singular = gm_lu_factor(d, kcopy, kpiv) != GM_OK;
-  if (scheme->kind == GM_PDE_PREISSMANN && n % 2 == 0 && k_singular)
+  if ((scheme->kind == GM_PDE_PREISSMANN || scheme->kind == GM_PDE_BOX_SDIRK2) && n % 2 == 0 &&
+      k_singular && options->dirichlet_left == 0 && options->dirichlet_right == 0)
     return gm_error_set(err, GM_EINVAL,
                         "pde: the Preissmann box needs an odd number of grid points on a "
                         "periodic grid when K is singular (got n = %zu: the checkerboard mode "
@@ -75,6 +83,27 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
     return gm_error_set(err, GM_EINVAL,
                         "pde: scheme '%s' needs a wave equation (s = (u, v, w) with V, dV)",
                         scheme->name);
+  if (scheme->kind == GM_PDE_GAUSS_PRK) {
+    if (n % 2 != 0)
+      return gm_error_set(err, GM_EINVAL, "pde: gauss-prk needs an even number of points "
+                          "(two Gauss points per cell; got n = %zu)", n);
+    for (size_t a = 0; a < d; a++)
+      if (grid->twist[a] != 0.0)
+        return gm_error_set(err, GM_EINVAL, "pde: gauss-prk does not take a twist");
+    if (!gm_pde_gauss_kernel_ok(eq))
+      return gm_error_set(err, GM_EINVAL, "pde: gauss-prk needs the kernel of K along "
+                          "coordinates (components whose row and column of K vanish)");
+    if (options->dirichlet_left != 0 || options->dirichlet_right != 0 || eq->has_gauge)
+      return gm_error_set(err, GM_EINVAL,
+                          "pde: gauss-prk is implemented for periodic grids without a gauge");
+  }
+  if (scheme->kind == GM_PDE_KDV_ZK && !eq->is_kdv)
+    return gm_error_set(err, GM_EINVAL, "pde: scheme 'zk' needs the KdV equation");
+  if (eq->has_gauge && (eq->gauge_phi >= d || eq->gauge_u >= d || eq->gauge_phi == eq->gauge_u))
+    return gm_error_set(err, GM_EINVAL, "pde: gauge components out of range");
+  if (eq->has_gauge && (scheme->kind == GM_PDE_EULER_BOX || scheme->kind == GM_PDE_BOX_SDIRK2))
+    return gm_error_set(err, GM_EINVAL, "pde: the Euler box does not pin the gauge of an "
+                        "equation with a potential (use preissmann)");
   if (scheme->kind == GM_PDE_WAVE_LF && dt > grid->h)
     return gm_error_set(err, GM_EINVAL,
                         "pde: LF step violates the CFL bound dt <= dx (dt = %g, dx = %g)", dt,
@@ -82,10 +111,57 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
   for (size_t a = 0; a < d; a++)
     if (!isfinite(grid->twist[a]))
       return gm_error_set(err, GM_EINVAL, "pde: grid twist must be finite");
+  if (options->dirichlet_left != 0 || options->dirichlet_right != 0) {
+    unsigned all = (1u << d) - 1u;
+    int bits = __builtin_popcount(options->dirichlet_left & all) +
+               __builtin_popcount(options->dirichlet_right & all);
+    if ((options->dirichlet_left | options->dirichlet_right) & ~all)
+      return gm_error_set(err, GM_EINVAL, "pde: Dirichlet masks name components past d = %zu", d);
+    for (size_t a = 0; a < d; a++)
+      if (grid->twist[a] != 0.0)
+        return gm_error_set(err, GM_EINVAL, "pde: a twist makes no sense with Dirichlet ends");
+    if (scheme->scalar && !((options->dirichlet_left & 1u) && (options->dirichlet_right & 1u)))
+      return gm_error_set(err, GM_EINVAL,
+                          "pde: Dirichlet ends for '%s' hold u (bit 0) at both ends", scheme->name);
+    if (!scheme->scalar && scheme->kind != GM_PDE_PREISSMANN)
+      return gm_error_set(err, GM_EINVAL, "pde: Dirichlet ends are not implemented for '%s'",
+                          scheme->name);
+    if (scheme->kind == GM_PDE_PREISSMANN && (size_t)bits != d)
+      return gm_error_set(err, GM_EINVAL,
+                          "pde: the Preissmann box with Dirichlet ends needs d = %zu held "
+                          "components in all (got %d): they replace the missing cell's equations",
+                          d, bits);
+    if (eq->has_gauge)
+      return gm_error_set(err, GM_EINVAL, "pde: Dirichlet ends with a gauge are not implemented");
+  }
   for (size_t k = 0; k < n * d; k++)
     if (!isfinite(s0[k]))
       return gm_error_set(err, GM_EDOMAIN, "pde: initial data not finite at point %zu "
                           "component %zu", k / d, k % d);
+  if (scheme->kind == GM_PDE_KDV_ZK) {
+    double umax = 0.0;
+    for (size_t i = 0; i < n; i++) umax = fmax(umax, fabs(s0[i * d + eq->gauge_u]));
+    double bound = gm_pde_zk_bound(grid, umax);
+    if (dt > bound)
+      return gm_error_set(err, GM_EINVAL,
+                          "pde: Zabusky-Kruskal step violates its stability bound "
+                          "dt (3 sqrt(3)/(2 dx^3) + max|u|/dx) <= 1 (dt = %g > %g)", dt, bound);
+  }
+  if (eq->has_gauge && scheme->kind == GM_PDE_PREISSMANN) {
+    /* the sum of the w rows at level 0: h Σ ū_{i+½} must close the ring of φ */
+    double m = 0.0, mabs = 0.0;
+    for (size_t i = 0; i < n; i++) {
+      double ub = 0.5 * (s0[i * d + eq->gauge_u] + s0[((i + 1) % n) * d + eq->gauge_u]);
+      m += grid->h * ub;
+      mabs += grid->h * fabs(ub);
+    }
+    double tw = grid->twist[eq->gauge_phi];
+    if (!(fabs(m - tw) <= 1e-10 * (1.0 + fabs(tw) + mabs)))
+      return gm_error_set(err, GM_EINVAL,
+                          "pde: the potential's twist (%.17g) must equal the mass h sum of "
+                          "(u_i + u_{i+1})/2 (%.17g): the box's Newton system is otherwise "
+                          "inconsistent", tw, m);
+  }
 
   gm_pde *p = calloc(1, sizeof *p);
   if (p == NULL) return gm_error_set(err, GM_ENOMEM, "pde: out of memory");
@@ -107,9 +183,28 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
   ok &= (p->work = vec(8 * d + 8)) != NULL;
   ok &= (p->pos = calloc(n, sizeof *p->pos)) != NULL;
   ok &= (p->msres = vec(n)) != NULL;
-  if (!scheme->scalar) {
-    ok &= gm_band_init(&p->band, nu, 3 * d - 1, 3 * d - 1) == GM_OK;
+  if (scheme->kind == GM_PDE_KDV_ZK) {
+    ok &= (p->u_prev = vec(n)) != NULL;
+    ok &= (p->u = vec(n)) != NULL;
+    ok &= (p->u_new = vec(n)) != NULL;
+  } else if (scheme->kind == GM_PDE_GAUSS_PRK) {
+    size_t nx = 3 * d * n; /* 6d per cell, n/2 cells */
+    ok &= gm_band_init(&p->band, nx, 18 * d - 1, 18 * d - 1) == GM_OK;
+    free(p->hess);
+    ok &= (p->hess = vec(2 * n * d * d)) != NULL;
+    ok &= (p->gp_x = vec(nx)) != NULL;
+    ok &= (p->gp_F = vec(nx)) != NULL;
+    ok &= (p->gp_b = vec(nx)) != NULL;
     if (options->track_variations)
+      for (int k = 0; k < 2; k++) {
+        ok &= (p->gp_t[k] = vec(nx)) != NULL;
+        for (int j = 0; j < 3; j++) ok &= (p->tan[k][j] = vec(nu)) != NULL;
+      }
+  } else if (!scheme->scalar) {
+    ok &= gm_band_init(&p->band, nu, 3 * d - 1, 3 * d - 1) == GM_OK;
+    if (scheme->kind == GM_PDE_BOX_SDIRK2)
+      for (int k = 0; k < 2; k++) ok &= (p->aux[k] = vec(nu)) != NULL;
+    if (options->track_variations && scheme->multisymplectic)
       for (int k = 0; k < 2; k++)
         for (int j = 0; j < 3; j++) ok &= (p->tan[k][j] = vec(nu)) != NULL;
   } else {
@@ -140,9 +235,23 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
         double r = lcg(&x);
         p->tan[k][0][q] = p->tan[k][1][q] = r;
       }
+    for (int k = 0; k < 2; k++) /* held components: their variations vanish */
+      for (size_t a = 0; a < d; a++) {
+        if (options->dirichlet_left & (1u << a)) p->tan[k][0][a] = p->tan[k][1][a] = 0.0;
+        if (options->dirichlet_right & (1u << a))
+          p->tan[k][0][(n - 1) * d + a] = p->tan[k][1][(n - 1) * d + a] = 0.0;
+      }
+    if (eq->has_gauge) /* the variations of the mass vanish (consistent linearised system) */
+      for (int k = 0; k < 2; k++) {
+        double mean = 0.0;
+        for (size_t i = 0; i < n; i++) mean += p->tan[k][0][i * d + eq->gauge_u] / (double)n;
+        for (size_t i = 0; i < n; i++)
+          p->tan[k][0][i * d + eq->gauge_u] = p->tan[k][1][i * d + eq->gauge_u] -= mean;
+      }
   }
-  if (scheme->scalar) {
-    st = gm_pde_wave_start(p, err);
+  if (scheme->kind == GM_PDE_GAUSS_PRK) gm_pde_gauss_init(p);
+  if (scheme->scalar || scheme->kind == GM_PDE_KDV_ZK) {
+    st = scheme->scalar ? gm_pde_wave_start(p, err) : gm_pde_zk_start(p, err);
     if (st != GM_OK) {
       gm_pde_free(p);
       return st;
@@ -165,7 +274,9 @@ gm_status gm_pde_add_observer(gm_pde *p, size_t every, gm_pde_observer_fn fn, vo
 gm_status gm_pde_advance(gm_pde *p, size_t n_steps, gm_error *err) {
   if (p == NULL) return gm_error_set(err, GM_EINVAL, "pde: NULL solver");
   for (size_t k = 0; k < n_steps; k++) {
-    gm_status st = p->scheme->scalar ? gm_pde_wave_step(p, err) : gm_pde_box_step(p, err);
+    gm_status st = p->scheme->scalar                    ? gm_pde_wave_step(p, err)
+                   : p->scheme->kind == GM_PDE_KDV_ZK ? gm_pde_zk_step(p, err)
+                                                      : gm_pde_box_step(p, err);
     if (st != GM_OK) return st;
     p->steps++;
     p->stats.steps++;
@@ -191,6 +302,7 @@ static double quad_sum(const gm_pde *p, const double *M) {
   double sum = 0.0;
   for (size_t i = 0; i < n; i++) {
     const double *si = p->s + i * d;
+    if (i == n - 1 && gm_pde_dirichlet(p)) break; /* no cell past the right end */
     for (size_t a = 0; a < d; a++)
       for (size_t b = 0; b < d; b++)
         sum += (gm_pde_at(p, p->s, i, 1, a) - si[a]) / p->grid.h * M[a * d + b] * si[b];
@@ -198,7 +310,14 @@ static double quad_sum(const gm_pde *p, const double *M) {
   return sum;
 }
 
+double gm_pde_point_x(const gm_pde_scheme *scheme, const gm_pde_grid *grid, size_t i) {
+  if (scheme != NULL && scheme->kind == GM_PDE_GAUSS_PRK) return gm_pde_gauss_point_x(grid, i);
+  return grid->x0 + (double)i * grid->h;
+}
+
 double gm_pde_energy(const gm_pde *p) {
+  if (p->scheme->kind == GM_PDE_GAUSS_PRK && !p->eq.is_kdv) return NAN; /* not implemented */
+  if (p->eq.is_kdv) return gm_pde_kdv_energy(p);
   if (p->scheme->scalar) return gm_pde_wave_energy(p);
   double e = 0.0;
   for (size_t i = 0; i < p->n; i++) e += p->eq.S(p->s + i * p->d, p->eq.params);
@@ -206,6 +325,8 @@ double gm_pde_energy(const gm_pde *p) {
 }
 
 double gm_pde_momentum(const gm_pde *p) {
+  if (p->scheme->kind == GM_PDE_GAUSS_PRK && !p->eq.is_kdv) return NAN; /* not implemented */
+  if (p->eq.is_kdv) return gm_pde_kdv_momentum(p);
   if (p->scheme->scalar) return gm_pde_wave_momentum(p);
   return p->grid.h * 0.5 * quad_sum(p, p->eq.W);
 }
@@ -216,9 +337,10 @@ double gm_pde_norm(const gm_pde *p) {
   double sum = 0.0;
   for (size_t i = 0; i < n; i++) {
     const double *si = p->s + i * d, *sj = p->s + ((i + 1) % n) * d;
-    if (p->scheme->scalar) {
-      sum += si[a] * si[a] + si[b] * si[b];
+    if (p->scheme->scalar || p->scheme->kind == GM_PDE_GAUSS_PRK) {
+      sum += si[a] * si[a] + si[b] * si[b]; /* gauss-prk: Gauss quadrature, b_j H = h */
     } else {
+      if (i == n - 1 && gm_pde_dirichlet(p)) break;
       double re = 0.5 * (si[a] + sj[a]), im = 0.5 * (si[b] + sj[b]);
       sum += re * re + im * im;
     }
@@ -258,13 +380,39 @@ static double node_quad(const gm_pde *p, const double *x0, const double *x1, siz
   return r;
 }
 
+double gm_pde_cell_energy(const gm_pde *p) {
+  if (p == NULL || p->scheme->scalar || p->scheme->kind == GM_PDE_GAUSS_PRK) return NAN;
+  size_t n = p->n, d = p->d;
+  double e = 0.0, bar[GM_PDE_MAX_DIM];
+  for (size_t i = 0; i + (gm_pde_dirichlet(p) ? 1 : 0) < n; i++) {
+    for (size_t a = 0; a < d; a++) bar[a] = 0.5 * (p->s[i * d + a] + gm_pde_at(p, p->s, i, 1, a));
+    e += p->eq.S(bar, p->eq.params) + 0.5 * cell_quad(p, p->s, i, p->eq.K);
+  }
+  return p->grid.h * e;
+}
+
+double gm_pde_cell_momentum(const gm_pde *p) {
+  if (p == NULL || p->scheme->scalar || p->scheme->kind == GM_PDE_GAUSS_PRK) return NAN;
+  double m = 0.0;
+  for (size_t i = 0; i + (gm_pde_dirichlet(p) ? 1 : 0) < p->n; i++)
+    m += 0.5 * cell_quad(p, p->s, i, p->eq.W);
+  return p->grid.h * m;
+}
+
 gm_status gm_pde_local_residuals(const gm_pde *p, double *energy, double *momentum) {
-  if (p == NULL || p->scheme->scalar || p->steps == 0) return GM_EUNSUPPORTED;
+  if (p == NULL || p->scheme->scalar || p->scheme->kind == GM_PDE_KDV_ZK ||
+      p->scheme->kind == GM_PDE_GAUSS_PRK || p->steps == 0)
+    return GM_EUNSUPPORTED;
   size_t n = p->n, d = p->d;
   const double *x0 = p->s_prev, *x1 = p->s; /* sⁿ and sⁿ⁺¹ of the last step */
   double bar[GM_PDE_MAX_DIM];
   const void *c = p->eq.params;
   for (size_t i = 0; i < n; i++) {
+    if (i == n - 1 && gm_pde_dirichlet(p)) { /* no cell past the right end */
+      if (energy != NULL) energy[i] = 0.0;
+      if (momentum != NULL) momentum[i] = 0.0;
+      break;
+    }
     double Sbar[2], Smid[2];
     const double *lv[2] = {x0, x1};
     for (int l = 0; l < 2; l++) {

@@ -26,6 +26,10 @@ gm_status gm_pde_wave_start(gm_pde *p, gm_error *err) {
   double dt = p->opt.dt;
   for (size_t i = 0; i < n; i++) p->u[i] = p->s[i * 3];
   for (size_t i = 0; i < n; i++) {
+    if (gm_pde_dirichlet(p) && (i == 0 || i == n - 1)) { /* held: u_t = 0 */
+      p->u_prev[i] = p->u[i];
+      continue;
+    }
     double acc = lap(p, p->u, i, p->grid.h) - p->eq.dV(p->u[i], p->eq.params);
     p->u_prev[i] = p->u[i] - dt * p->s[i * 3 + 1] + 0.5 * dt * dt * acc;
     if (!isfinite(p->u_prev[i]))
@@ -42,6 +46,7 @@ void gm_pde_wave_fill_state(gm_pde *p) {
     p->s[i * 3 + 1] = (p->u[i] - p->u_prev[i]) / p->opt.dt;
     p->s[i * 3 + 2] = (gm_pde_u_at(p, p->u, i, 1) - p->u[i]) / p->grid.h;
   }
+  if (gm_pde_dirichlet(p)) p->s[(n - 1) * 3 + 2] = p->s[(n - 2) * 3 + 2]; /* no wrap */
 }
 
 /* EC's difference quotient of V and its derivative in z, between z and y */
@@ -86,6 +91,11 @@ static gm_status ms_step(gm_pde *p, gm_error *err) {
       double up_l = 0.25 * (uv[0] + uv[1] + xv[0] + xv[1]); /* (i−½, n+½) */
       double dn_r = 0.25 * (uv[1] + uv[2] + mv[1] + mv[2]); /* (i+½, n−½) */
       double dn_l = 0.25 * (uv[0] + uv[1] + mv[0] + mv[1]); /* (i−½, n−½) */
+      if (gm_pde_dirichlet(p) && (i == 0 || i == n - 1)) { /* held end: uⁿ⁺¹ = uⁿ */
+        F[i] = x[i] - u[i];
+        gm_band_add(&p->band, p->pos[i], p->pos[i], 1.0);
+        continue;
+      }
       F[i] = Ax - xx + 0.25 * (p->eq.dV(up_r, c) + p->eq.dV(up_l, c) + p->eq.dV(dn_r, c) +
                                p->eq.dV(dn_l, c));
       double hr = d2V(p, up_r) / 16.0, hl = d2V(p, up_l) / 16.0;
@@ -132,6 +142,10 @@ gm_status gm_pde_wave_step(gm_pde *p, gm_error *err) {
     if (st != GM_OK) return st;
   } else {
     for (size_t i = 0; i < n; i++) {
+      if (gm_pde_dirichlet(p) && (i == 0 || i == n - 1)) {
+        p->u_new[i] = p->u[i];
+        continue;
+      }
       double base = 2.0 * p->u[i] - p->u_prev[i] + dt * dt * lap(p, p->u, i, h);
       if (p->scheme->kind == GM_PDE_WAVE_LF) {
         p->u_new[i] = base - dt * dt * p->eq.dV(p->u[i], c);
@@ -181,9 +195,9 @@ double gm_pde_wave_energy(const gm_pde *p) {
   const double *u = p->u, *um = p->u_prev;
   for (size_t i = 0; i < n; i++) {
     double ut = (u[i] - um[i]) / dt;
-    e += 0.5 * ut * ut +
-         0.5 * (gm_pde_u_at(p, um, i, 1) - um[i]) / h * (gm_pde_u_at(p, u, i, 1) - u[i]) / h +
-         0.5 * (p->eq.V(u[i], p->eq.params) + p->eq.V(um[i], p->eq.params));
+    e += 0.5 * ut * ut + 0.5 * (p->eq.V(u[i], p->eq.params) + p->eq.V(um[i], p->eq.params));
+    if (!(gm_pde_dirichlet(p) && i == n - 1)) /* no cell past a Dirichlet right end */
+      e += 0.5 * (gm_pde_u_at(p, um, i, 1) - um[i]) / h * (gm_pde_u_at(p, u, i, 1) - u[i]) / h;
   }
   return h * e;
 }

@@ -21,11 +21,11 @@ typedef struct nls_result {
   double error, norm_drift, ms;
 } nls_result;
 
-static nls_result nls_run(size_t n, double T) {
+static nls_result nls_run_scheme(const char *scheme, size_t n, double T) {
   double h = 2.0 * PDE_L / (double)n, dt = h / 2;
   gm_pde_equation eq = gm_pde_nls();
   const gm_pde_scheme *s = NULL;
-  cr_assert_eq(gm_pde_scheme_find("preissmann", &s), GM_OK);
+  cr_assert_eq(gm_pde_scheme_find(scheme, &s), GM_OK);
   gm_pde_grid g = {n, h, -PDE_L, {0}};
   gm_pde_options o = gm_pde_options_defaults();
   o.dt = dt;
@@ -52,6 +52,18 @@ static nls_result nls_run(size_t n, double T) {
   free(s0);
   gm_pde_free(p);
   return r;
+}
+
+static nls_result nls_run(size_t n, double T) { return nls_run_scheme("preissmann", n, T); }
+
+Test(pde_nls, box_sdirk2_soliton_order_and_charge_drift) {
+  /* the comparison row of the long runs: second order, but the charge is not conserved */
+  nls_result a = nls_run_scheme("box-sdirk2", 200, 2.0), b = nls_run_scheme("box-sdirk2", 400, 2.0);
+  double order = log2(a.error / b.error);
+  cr_log_info("NLS box-sdirk2: errors %.3e, %.3e, order %.3f; charge drift %.2e, %.2e", a.error,
+              b.error, order, a.norm_drift, b.norm_drift);
+  cr_assert(order > 1.85 && order < 2.15, "order %.3f", order);
+  cr_assert(a.norm_drift > 1e-8, "charge drift %.2e: SDIRK2 should not conserve it", a.norm_drift);
 }
 
 Test(pde_nls, preissmann_soliton) {

@@ -51,7 +51,7 @@ Test(pde, equation_must_be_skew) {
 }
 
 Test(pde, scheme_table) {
-  cr_assert_eq(gm_pde_scheme_count(), 5);
+  cr_assert_eq(gm_pde_scheme_count(), 8);
   for (size_t i = 0; i < gm_pde_scheme_count(); i++) {
     const gm_pde_scheme *s = gm_pde_scheme_at(i), *f = NULL;
     cr_assert_not_null(s->reference);
@@ -60,7 +60,7 @@ Test(pde, scheme_table) {
     cr_assert_eq(gm_pde_scheme_find(s->name, &f), GM_OK);
     cr_assert_eq(f, s);
   }
-  cr_assert_null(gm_pde_scheme_at(5));
+  cr_assert_null(gm_pde_scheme_at(8));
   const gm_pde_scheme *f = NULL;
   cr_assert_eq(gm_pde_scheme_find("box", &f), GM_ENOTFOUND);
 }

@@ -1,0 +1,285 @@
+/* The multisymplectic Gauss–Legendre Runge–Kutta box with two stages in t and in x
+ * (S. Reich, J. Comput. Phys. 157 (2000) 473, "Multi-symplectic Runge–Kutta collocation
+ * methods for Hamiltonian wave equations", eqs. (3.1)–(3.6); Bridges & Reich, J. Phys. A 39
+ * (2006) §4.2). On cell m = [X_m, X_m + H] and step [tⁿ, tⁿ + Δt], with the 2-stage Gauss
+ * coefficients A, b, c (c = ½ ∓ √3/6) in both directions:
+ *   Z_ij = z_j + Δt Σ_k a_ik ∂_tZ_kj,     z_jⁿ⁺¹ = z_j + Δt Σ_i b_i ∂_tZ_ij,
+ *   Z_ij = Y_i + H Σ_k a_jk ∂_xZ_ik,      Y_{m+1,i} = Y_{m,i} + H Σ_j b_j ∂_xZ_ij,
+ *   𝕎 ∂_tZ_ij + 𝕂 ∂_xZ_ij = ∇S(Z_ij),
+ * z_j the state at the spatial Gauss points (tⁿ), Y_i the node values X_m at the time stages.
+ * With ∂_tZ = A⁻¹(Z − z𝟙)/Δt and ∂_xZ = A⁻¹(Z − Y𝟙)/H eliminated, one step is a Newton solve
+ * for (Z, Y): 6d unknowns per cell, coupled to the next cell by the continuity of Y, on the
+ * periodic ring (banded LU, block size 6d). For the 2-stage Gauss method bᵀA⁻¹ = (−√3, √3)
+ * (so bᵀA⁻¹𝟙 = 1 − R(∞) = 0), which gives z_jⁿ⁺¹ = z_j + √3 (Z_2j − Z_1j) and
+ * Y_{m+1,i} = Y_{m,i} + √3 (Z_i2 − Z_i1).
+ * Discrete multisymplectic law per cell (Reich 2000 Thm. 1: b_i a_ij + b_j a_ji = b_i b_j):
+ *   H Σ_j b_j (ω_jⁿ⁺¹ − ω_jⁿ) + Δt Σ_i b_i (κ_{m+1,i} − κ_{m,i}) = 0,
+ *   ω = dz∧𝕎dz at the spatial stages, κ = dY∧𝕂dY at the nodes. */
+#include <math.h>
+#include <string.h>
+
+#include "pde/internal.h"
+
+#define SQ3 1.73205080756887729353
+static const double A_INV[2][2] = {{3.0, -3.0 + 2.0 * SQ3}, {-3.0 - 2.0 * SQ3, 3.0}};
+static const double BETA[2] = {-SQ3, SQ3}; /* bᵀA⁻¹ */
+
+/* unknowns of cell m in natural layout: Z_ij at ((2i + j)d + a), Y_i at (4d + i d + a) */
+static size_t zk(size_t d, size_t i, size_t j) { return (2 * i + j) * d; }
+static size_t yk(size_t d, size_t i) { return 4 * d + i * d; }
+
+double gm_pde_gauss_point_x(const gm_pde_grid *g, size_t i) {
+  size_t m = i / 2;
+  double c = (i % 2 == 0) ? 0.5 - SQ3 / 6.0 : 0.5 + SQ3 / 6.0;
+  return g->x0 + 2.0 * g->h * ((double)m + c);
+}
+
+/* The initial guess of Y at node X_m: the mean of the two nearest Gauss points. */
+void gm_pde_gauss_init(gm_pde *p) {
+  size_t M = p->n / 2, d = p->d, B = 6 * d;
+  for (size_t m = 0; m < M; m++) {
+    const double *zl = p->s + ((2 * m + p->n - 1) % p->n) * d, *zr = p->s + 2 * m * d;
+    for (size_t i = 0; i < 2; i++)
+      for (size_t a = 0; a < d; a++) p->gp_x[m * B + yk(d, i) + a] = 0.5 * (zl[a] + zr[a]);
+  }
+  gm_ring_positions(M, p->pos);
+}
+
+/* A singular 𝕂 must have its kernel along coordinates (see k_free), checked by create. */
+int gm_pde_gauss_kernel_ok(const gm_pde_equation *eq) {
+  size_t d = eq->dim, free_n = 0, idx[GM_PDE_MAX_DIM], m = 0;
+  double Kr[GM_PDE_MAX_DIM * GM_PDE_MAX_DIM];
+  int piv[GM_PDE_MAX_DIM];
+  for (size_t a = 0; a < d; a++) {
+    int z = 1;
+    for (size_t b = 0; b < d; b++)
+      if (eq->K[a * d + b] != 0.0 || eq->K[b * d + a] != 0.0) z = 0;
+    if (z)
+      free_n++;
+    else
+      idx[m++] = a;
+  }
+  (void)free_n;
+  for (size_t r = 0; r < m; r++)
+    for (size_t c = 0; c < m; c++) Kr[r * m + c] = eq->K[idx[r] * d + idx[c]];
+  return m == 0 || gm_lu_factor(m, Kr, piv) == GM_OK;
+}
+
+/* Components whose row and column of 𝕂 vanish (sine-Gordon's v) have no x-derivative in the
+ * equations: their ∂_xZ are free, so their node values Y and continuity equations carry no
+ * information, and on the ring the continuity sums Σ_m βᵀZ_m = 0 would over-determine them
+ * (Σβ = 0 for an even number of stages). Their Y is set to 0 instead. */
+static int k_free(const gm_pde *p, size_t a) {
+  for (size_t b = 0; b < p->d; b++)
+    if (p->eq.K[a * p->d + b] != 0.0 || p->eq.K[b * p->d + a] != 0.0) return 0;
+  return 1;
+}
+
+static void residual(gm_pde *p, const double *x, double *F) {
+  size_t M = p->n / 2, d = p->d, B = 6 * d;
+  double dt = p->opt.dt, H = 2.0 * p->grid.h;
+  double *g = p->work, t[GM_PDE_MAX_DIM], xs[GM_PDE_MAX_DIM];
+  for (size_t m = 0; m < M; m++) {
+    const double *X = x + m * B, *Xn = x + ((m + 1) % M) * B;
+    const double *z = p->s + 2 * m * d; /* z_j at j d */
+    double *Fm = F + m * B;
+    for (size_t i = 0; i < 2; i++)
+      for (size_t j = 0; j < 2; j++) {
+        for (size_t a = 0; a < d; a++) {
+          t[a] = 0.0;
+          xs[a] = 0.0;
+          for (size_t k = 0; k < 2; k++) {
+            t[a] += A_INV[i][k] * (X[zk(d, k, j) + a] - z[j * d + a]) / dt;
+            xs[a] += A_INV[j][k] * (X[zk(d, i, k) + a] - X[yk(d, i) + a]) / H;
+          }
+        }
+        p->eq.gradient(X + zk(d, i, j), g, p->eq.params);
+        p->stats.gradient_evaluations++;
+        double *Fq = Fm + zk(d, i, j);
+        for (size_t a = 0; a < d; a++) {
+          double r = -g[a];
+          for (size_t b = 0; b < d; b++)
+            r += p->eq.W[a * d + b] * t[b] + p->eq.K[a * d + b] * xs[b];
+          Fq[a] = r;
+        }
+      }
+    for (size_t i = 0; i < 2; i++)
+      for (size_t a = 0; a < d; a++) {
+        double r = Xn[yk(d, i) + a] - X[yk(d, i) + a];
+        for (size_t k = 0; k < 2; k++) r -= BETA[k] * (X[zk(d, i, k) + a] - X[yk(d, i) + a]);
+        Fm[yk(d, i) + a] = k_free(p, a) ? X[yk(d, i) + a] : r;
+      }
+  }
+}
+
+static void add(gm_pde *p, size_t mr, size_t r, size_t mc, size_t c, double v) {
+  size_t B = 6 * p->d;
+  if (v != 0.0) gm_band_add(&p->band, p->pos[mr] * B + r, p->pos[mc] * B + c, v);
+}
+
+static gm_status jacobian(gm_pde *p, const double *x) {
+  size_t M = p->n / 2, d = p->d, B = 6 * d;
+  double dt = p->opt.dt, H = 2.0 * p->grid.h;
+  const double *W = p->eq.W, *K = p->eq.K;
+  gm_band_zero(&p->band);
+  for (size_t m = 0; m < M; m++) {
+    size_t mn = (m + 1) % M;
+    for (size_t i = 0; i < 2; i++)
+      for (size_t j = 0; j < 2; j++) {
+        size_t q = zk(d, i, j);
+        double *Hs = p->hess + (m * 4 + 2 * i + j) * d * d;
+        gm_pde_hessian(p, x + m * B + q, Hs, p->work);
+        for (size_t a = 0; a < d; a++)
+          for (size_t b = 0; b < d; b++) {
+            for (size_t k = 0; k < 2; k++) {
+              add(p, m, q + a, m, zk(d, k, j) + b, W[a * d + b] * A_INV[i][k] / dt);
+              add(p, m, q + a, m, zk(d, i, k) + b, K[a * d + b] * A_INV[j][k] / H);
+            }
+            add(p, m, q + a, m, q + b, -Hs[a * d + b]);
+            add(p, m, q + a, m, yk(d, i) + b,
+                -K[a * d + b] * (A_INV[j][0] + A_INV[j][1]) / H);
+          }
+      }
+    for (size_t i = 0; i < 2; i++)
+      for (size_t a = 0; a < d; a++) {
+        if (k_free(p, a)) {
+          add(p, m, yk(d, i) + a, m, yk(d, i) + a, 1.0);
+          continue;
+        }
+        add(p, m, yk(d, i) + a, mn, yk(d, i) + a, 1.0);
+        add(p, m, yk(d, i) + a, m, yk(d, i) + a, -1.0 + BETA[0] + BETA[1]);
+        for (size_t k = 0; k < 2; k++) add(p, m, yk(d, i) + a, m, zk(d, i, k) + a, -BETA[k]);
+      }
+  }
+  p->stats.factorizations++;
+  return gm_band_factor(&p->band);
+}
+
+static void solve_natural(gm_pde *p, const double *rhs, double *out) {
+  size_t M = p->n / 2, B = 6 * p->d;
+  for (size_t m = 0; m < M; m++) memcpy(p->gp_b + p->pos[m] * B, rhs + m * B, B * sizeof *rhs);
+  gm_band_solve(&p->band, p->gp_b);
+  for (size_t m = 0; m < M; m++) memcpy(out + m * B, p->gp_b + p->pos[m] * B, B * sizeof *out);
+}
+
+static double maxabs(const double *x, size_t n) {
+  double m = 0.0;
+  for (size_t k = 0; k < n; k++) {
+    if (!isfinite(x[k])) return NAN;
+    if (fabs(x[k]) > m) m = fabs(x[k]);
+  }
+  return m;
+}
+
+/* z_jⁿ⁺¹ = z_j + Σ_k β_k (Z_kj − z_j) for every cell, from stage values X into out */
+static void time_update(const gm_pde *p, const double *X, const double *z, double *out) {
+  size_t M = p->n / 2, d = p->d, B = 6 * d;
+  for (size_t m = 0; m < M; m++)
+    for (size_t j = 0; j < 2; j++)
+      for (size_t a = 0; a < d; a++) {
+        size_t q = (2 * m + j) * d + a;
+        double r = z[q];
+        for (size_t k = 0; k < 2; k++) r += BETA[k] * (X[m * B + zk(d, k, j) + a] - z[q]);
+        out[q] = r;
+      }
+}
+
+static double bil(size_t d, const double *v, const double *M, const double *u) {
+  double s = 0.0;
+  for (size_t a = 0; a < d; a++)
+    for (size_t b = 0; b < d; b++) s += v[a] * M[a * d + b] * u[b];
+  return s;
+}
+
+/* tangents: J δX = −(∂F/∂zⁿ) δzⁿ, then δzⁿ⁺¹ by the time update; the law per cell */
+static void tangents(gm_pde *p) {
+  size_t M = p->n / 2, d = p->d, B = 6 * d;
+  double dt = p->opt.dt, H = 2.0 * p->grid.h;
+  for (int v = 0; v < 2; v++) {
+    const double *dz = p->tan[v][1];
+    double *R = p->gp_F;
+    memset(R, 0, M * B * sizeof *R);
+    for (size_t m = 0; m < M; m++)
+      for (size_t i = 0; i < 2; i++)
+        for (size_t j = 0; j < 2; j++) /* ∂F_ij/∂z_j = −𝕎 (A⁻¹𝟙)_i /Δt; rhs = −that·δz */
+          for (size_t a = 0; a < d; a++) {
+            double r = 0.0;
+            for (size_t b = 0; b < d; b++) r += p->eq.W[a * d + b] * dz[(2 * m + j) * d + b];
+            R[m * B + zk(d, i, j) + a] = r * (A_INV[i][0] + A_INV[i][1]) / dt;
+          }
+    solve_natural(p, R, p->gp_t[v]);
+    time_update(p, p->gp_t[v], dz, p->tan[v][2]);
+  }
+  const double *U0 = p->tan[0][1], *U1 = p->tan[0][2], *V0 = p->tan[1][1], *V1 = p->tan[1][2];
+  const double *UX = p->gp_t[0], *VX = p->gp_t[1];
+  for (size_t m = 0; m < M; m++) {
+    size_t mn = (m + 1) % M;
+    double w = 0.0, ws = 0.0, k = 0.0, ks = 0.0;
+    for (size_t j = 0; j < 2; j++) {
+      size_t q = (2 * m + j) * d;
+      double a1 = 0.5 * H * bil(d, V1 + q, p->eq.W, U1 + q), a0 = 0.5 * H * bil(d, V0 + q, p->eq.W, U0 + q);
+      w += a1 - a0;
+      ws += fabs(a1) + fabs(a0);
+    }
+    for (size_t i = 0; i < 2; i++) {
+      double c1 = 0.5 * dt * bil(d, VX + mn * B + yk(d, i), p->eq.K, UX + mn * B + yk(d, i));
+      double c0 = 0.5 * dt * bil(d, VX + m * B + yk(d, i), p->eq.K, UX + m * B + yk(d, i));
+      k += c1 - c0;
+      ks += fabs(c1) + fabs(c0);
+    }
+    double scale = ws + ks;
+    p->msres[2 * m] = p->msres[2 * m + 1] = scale > 0.0 ? fabs(w + k) / scale : 0.0;
+  }
+  p->ms_valid = 1;
+  for (int v = 0; v < 2; v++) {
+    double *t0 = p->tan[v][1];
+    p->tan[v][1] = p->tan[v][2];
+    p->tan[v][2] = t0;
+  }
+}
+
+gm_status gm_pde_gauss_step(gm_pde *p, gm_error *err) {
+  size_t M = p->n / 2, d = p->d, B = 6 * d, nx = M * B;
+  double *x = p->gp_x;
+  /* guess: Z_ij = z_j (the Y of the last step are kept) */
+  for (size_t m = 0; m < M; m++)
+    for (size_t i = 0; i < 2; i++)
+      for (size_t j = 0; j < 2; j++)
+        memcpy(x + m * B + zk(d, i, j), p->s + (2 * m + j) * d, d * sizeof *x);
+  double last = INFINITY;
+  size_t it;
+  for (it = 0; it < p->opt.newton_max_iter; it++) {
+    residual(p, x, p->gp_F);
+    if (!isfinite(maxabs(p->gp_F, nx)))
+      return gm_error_set(err, GM_EDOMAIN, "pde gauss-prk: non-finite residual at step %zu",
+                          p->steps + 1);
+    if (jacobian(p, x) != GM_OK)
+      return gm_error_set(err, GM_ESINGULAR, "pde gauss-prk: singular Newton matrix at step %zu",
+                          p->steps + 1);
+    for (size_t k = 0; k < nx; k++) p->gp_F[k] = -p->gp_F[k];
+    solve_natural(p, p->gp_F, p->gp_F);
+    for (size_t k = 0; k < nx; k++) x[k] += p->gp_F[k];
+    p->stats.newton_iterations++;
+    double prev = last, scale = 1.0 + maxabs(x, nx);
+    last = maxabs(p->gp_F, nx);
+    if (last <= p->opt.newton_tol * scale) break;
+    if (last <= 1e-9 * scale && last >= 0.5 * prev) break;
+  }
+  if (it == p->opt.newton_max_iter || !isfinite(last))
+    return gm_error_set(err, isfinite(last) ? GM_ENOCONV : GM_EDOMAIN,
+                        "pde gauss-prk: Newton did not converge at step %zu (max|dX| = %g)",
+                        p->steps + 1, last);
+  if (last > p->stats.max_newton_residual) p->stats.max_newton_residual = last;
+  if (p->tan[0][0] != NULL) {
+    if (jacobian(p, x) != GM_OK)
+      return gm_error_set(err, GM_ESINGULAR, "pde gauss-prk: singular tangent matrix at step %zu",
+                          p->steps + 1);
+    tangents(p);
+  }
+  time_update(p, x, p->s, p->s_new);
+  double *tmp = p->s_prev;
+  p->s_prev = p->s;
+  p->s = p->s_new;
+  p->s_new = tmp;
+  return GM_OK;
+}
