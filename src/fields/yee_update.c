@@ -19,12 +19,26 @@
  * choice of (uniform/per-location coefficients, lossless/lossy) is selected at create time:
  * no branch on options inside the loops. OpenMP over the two outer loops (z, y rows), SIMD over
  * the inner one (elementwise, no reductions: bitwise identical for any thread count). */
+#include <limits.h>
 #include <string.h>
 
 #include "fields/internal.h"
 
+/* Runtime CPU dispatch of the update kernels: GCC compiles each kernel for generic x86-64,
+ * x86-64-v3 (AVX2) and x86-64-v4 (AVX-512) and picks one by the CPU at load time (ifunc), so a
+ * generic build runs the wide kernels where the CPU has them. The project compiles with
+ * -ffp-contract=off, so no clone fuses a multiply and an add: every clone rounds exactly as
+ * the generic one and results do not depend on the CPU (tests/unit/test_yee.c compares
+ * the fields of runs bitwise). GM_NO_CPU_DISPATCH (CMake GM_CPU_DISPATCH=OFF) turns it off. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
+    !defined(GM_NO_CPU_DISPATCH)
+#define YEE_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+#else
+#define YEE_CLONES
+#endif
+
 #define E_KERNEL(NAME, A, B, C, INVB, INVC, UPDATE)                                           \
-  static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
+  YEE_CLONES static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
     double *restrict E = s->f[p][A];                                                          \
     const double *restrict Hc = s->f[p][3 + C];                                               \
     const double *restrict Hb = s->f[p][3 + B];                                               \
@@ -52,7 +66,7 @@
   }
 
 #define H_KERNEL(NAME, A, B, C, INVB, INVC, UPDATE)                                           \
-  static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
+  YEE_CLONES static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
     double *restrict H = s->f[p][3 + A];                                                      \
     const double *restrict Ec = s->f[p][C];                                                   \
     const double *restrict Eb = s->f[p][B];                                                   \
@@ -106,7 +120,7 @@ H_FAMILY(array, H_ARRAY)
  * step. Per element the arithmetic is exactly the single-component kernels' (same operations in
  * the same order), so fused and unfused runs agree bitwise. */
 #define FUSED_E(NAME, UX, UY, UZ)                                                             \
-  static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
+  YEE_CLONES static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
     double *restrict Ex = s->f[p][0], *restrict Ey = s->f[p][1], *restrict Ez = s->f[p][2];   \
     const double *restrict Hx = s->f[p][3], *restrict Hy = s->f[p][4];                        \
     const double *restrict Hz = s->f[p][5];                                                   \
@@ -140,7 +154,7 @@ H_FAMILY(array, H_ARRAY)
   }
 
 #define FUSED_H(NAME, UX, UY, UZ)                                                             \
-  static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
+  YEE_CLONES static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
     double *restrict Hx = s->f[p][3], *restrict Hy = s->f[p][4], *restrict Hz = s->f[p][5];   \
     const double *restrict Ex = s->f[p][0], *restrict Ey = s->f[p][1];                        \
     const double *restrict Ez = s->f[p][2];                                                   \
@@ -274,3 +288,61 @@ static void update_field(gm_yee *s, int first) {
 
 void yee_update_e(gm_yee *s) { update_field(s, 0); }
 void yee_update_h(gm_yee *s) { update_field(s, 3); }
+
+/* ---- one step as a single sweep over z planes (one thread) ----
+ * E at index q reads H at q and q − s (Ampère), H at q reads E at q and q + s (Faraday). So
+ * in index space E plane k needs H planes k and k−1 at the old level, and H plane k−1 needs E
+ * planes k−1 and k at the new level. One pass k = kmin … kmax+1 that updates E plane k, adds
+ * the E sources of that plane, then updates H plane k−1 therefore computes exactly the
+ * two-sweep step (each location runs the same kernel arithmetic on the same inputs: bitwise
+ * identical), while the E and H planes it touches twice stay in cache: per step each field
+ * array is read and written once instead of read twice. Used only where nothing else acts
+ * between the two half steps across whole planes: no CPML ψ slabs, no TF/SF, no periodic
+ * ghost copies (see yee_wavefront_eligible). */
+static int box_in_plane(const yee_box *b, long k, yee_box *out) {
+  if (b->cnt[0] == 0 || b->cnt[1] == 0 || k < (long)b->lo[2] || k >= (long)(b->lo[2] + b->cnt[2]))
+    return 0;
+  *out = *b;
+  out->lo[2] = (size_t)k;
+  out->cnt[2] = 1;
+  return 1;
+}
+
+static void plane_field(gm_yee *s, int first, long k) {
+  void (*const *one)(gm_yee *, int, const yee_box *) = first == 0 ? s->update_e : s->update_h;
+  void (*fused)(gm_yee *, int, const yee_box *) = first == 0 ? s->fused_e : s->fused_h;
+  yee_box b;
+  if (fused != NULL && box_in_plane(&s->fused_box[first / 3], k, &b)) fused(s, 0, &b);
+  for (int a = 0; a < 3; ++a)
+    if (one[a] != NULL)
+      for (size_t r = 0; r < s->n_rest[first + a]; ++r)
+        if (box_in_plane(&s->rest[first + a][r], k, &b)) one[a](s, 0, &b);
+}
+
+int yee_wavefront_eligible(const gm_yee *s) {
+  if (s->L.dim != GM_YEE_3D || s->n_parts != 1 || s->n_cpml != 0 || s->n_tfsf != 0) return 0;
+  if (s->n_threads != 1 || s->fused_e == NULL || s->opt.sweep == GM_YEE_SWEEP_HALF_STEPS) return 0;
+  for (int a = 0; a < 3; ++a)
+    if (s->periodic[a]) return 0;
+  return 1;
+}
+
+int gm_yee_one_sweep(const gm_yee *s) { return s != NULL && yee_wavefront_eligible(s); }
+
+void yee_step_wavefront(gm_yee *s) {
+  long k0 = LONG_MAX, k1 = LONG_MIN;
+  for (int c = 0; c < GM_YEE_N_COMPONENTS; ++c)
+    if (s->upd[c].cnt[2] > 0) {
+      k0 = (long)s->upd[c].lo[2] < k0 ? (long)s->upd[c].lo[2] : k0;
+      const long hi = (long)(s->upd[c].lo[2] + s->upd[c].cnt[2]);
+      k1 = hi > k1 ? hi : k1;
+    }
+  const long plane = (long)s->L.stride[2], off = (long)s->L.offset[2];
+  for (long k = k0; k <= k1; ++k) {
+    if (k < k1) {
+      plane_field(s, 0, k);
+      yee_sources_apply_plane(s, (size_t)((k + off) * plane), (size_t)plane);
+    }
+    if (k > k0) plane_field(s, 3, k - 1);
+  }
+}
