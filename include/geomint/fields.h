@@ -152,10 +152,10 @@ enum { GM_FACE_XLO = 0, GM_FACE_XHI, GM_FACE_YLO, GM_FACE_YHI, GM_FACE_ZLO, GM_F
 
 /* ---- options and creation ----------------------------------------------------------------- */
 
-/* How a step walks the grid. Both compute bitwise the same fields. AUTO: on one thread, a 3-D
- * grid without CPML, TF/SF or periodic faces does a step as one sweep over z planes (E plane k,
- * then H plane k−1: each array streamed once a step instead of 1.5 times); otherwise two
- * sweeps. HALF_STEPS: always two sweeps (E, then H). */
+/* How a step walks the grid. Both compute bitwise the same fields. AUTO: a 3-D grid without
+ * CPML, TF/SF or periodic faces does a step as one sweep over z planes (E plane k, then H plane
+ * k−1: each array streamed once a step instead of 1.5 times; threads take slabs of planes);
+ * otherwise two sweeps. HALF_STEPS: always two sweeps (E, then H). */
 typedef enum gm_yee_sweep { GM_YEE_SWEEP_AUTO = 0, GM_YEE_SWEEP_HALF_STEPS = 1 } gm_yee_sweep;
 
 typedef struct gm_yee_options {

@@ -117,6 +117,11 @@ struct gm_yee {
   void (*update_h[3])(gm_yee *s, int part, const yee_box *box);
   void (*fused_e)(gm_yee *s, int part, const yee_box *box);
   void (*fused_h)(gm_yee *s, int part, const yee_box *box);
+  /* the same kernels without worksharing: all rows on the calling thread (one-sweep step) */
+  void (*update_e1[3])(gm_yee *s, int part, const yee_box *box);
+  void (*update_h1[3])(gm_yee *s, int part, const yee_box *box);
+  void (*fused_e1)(gm_yee *s, int part, const yee_box *box);
+  void (*fused_h1)(gm_yee *s, int part, const yee_box *box);
   yee_box fused_box[2];  /* E, H (cnt 0 when not fused) */
   yee_box rest[GM_YEE_N_COMPONENTS][6];
   size_t n_rest[GM_YEE_N_COMPONENTS];

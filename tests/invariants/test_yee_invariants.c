@@ -255,8 +255,8 @@ Test(yee_invariants, threads_bitwise_identical) {
 
 /* The one-sweep step (E plane k, then H plane k − 1) computes bitwise the fields of the
  * two-sweep step, with per-location and lossy coefficients, PEC and PMC faces, soft and hard
- * E sources, an H source and a current J across several z planes; and 2 threads (two sweeps)
- * agree with 1 thread (one sweep). */
+ * E sources, an H source and a current J across several z planes; and 2 threads (two slabs of
+ * planes) agree with 1 thread. */
 static void sweep_run(gm_yee_sweep sweep, int threads, double **out, size_t *size) {
   gm_yee_grid g = {GM_YEE_3D, {40, 36, 34}, {0.05, 0.05, 0.05}, {0, 0, 0}};
   gm_yee_materials *m = NULL;
@@ -274,7 +274,7 @@ static void sweep_run(gm_yee_sweep sweep, int threads, double **out, size_t *siz
   o.boundary[4].kind = GM_BOUNDARY_PMC;
   gm_yee *s = NULL;
   cr_assert_eq(gm_yee_create(&g, m, &o, &s, &err), GM_OK, "%s", err.message);
-  cr_assert_eq(gm_yee_one_sweep(s), sweep == GM_YEE_SWEEP_AUTO && threads == 1);
+  cr_assert_eq(gm_yee_one_sweep(s), sweep == GM_YEE_SWEEP_AUTO);
   const gm_waveform w = {GM_WAVE_GAUSSIAN, 1.0, 2.0, 0.3, 1.0, 0.0, NULL, NULL};
   const gm_point_source ps[3] = {{GM_EY, {0.7, 0.8, 0.9}, GM_SOURCE_SOFT, w},
                                  {GM_EX, {1.2, 0.5, 0.3}, GM_SOURCE_HARD, w},
