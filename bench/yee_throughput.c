@@ -11,7 +11,8 @@
  *
  *   bench_yee_throughput [DIR] [N] [STEPS]      (defaults bench/results, 128, 200)
  *
- * Environment: GM_MEEP_SCRIPT overrides the script path, GM_SKIP_MEEP=1 skips MEEP.
+ * Environment: GM_MEEP_SCRIPT overrides the script path, GM_SKIP_MEEP=1 skips MEEP,
+ * GM_YEE_SWEEP=half makes geomint do two sweeps a step (the comparison in docs/maxwell.md).
  * Writes DIR/yee_throughput.json with the rates and the ratios to the goals of issue 10
  * (≥ 1.8 × MEEP np 1 with one thread, ≥ 1.6 × MEEP np 2 with two threads, ≥ 0.75 of the
  * stream floor). Timings are wall clock. Each of REPEATS rounds times geomint and the floor
@@ -68,6 +69,9 @@ static gm_yee *make_cavity(size_t n, int threads, gm_error *err) {
   gm_yee_options opt = gm_yee_defaults();
   opt.dt = 0.5;
   opt.n_threads = threads;
+  /* GM_YEE_SWEEP=half: two sweeps a step (E, then H) even where one sweep applies */
+  const char *sweep = getenv("GM_YEE_SWEEP");
+  if (sweep != NULL && strcmp(sweep, "half") == 0) opt.sweep = GM_YEE_SWEEP_HALF_STEPS;
   gm_yee *s = NULL;
   if (gm_yee_create(&grid, NULL, &opt, &s, err) != GM_OK) return NULL;
   for (int c = 0; c < 3; ++c) {

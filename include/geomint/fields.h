@@ -152,6 +152,12 @@ enum { GM_FACE_XLO = 0, GM_FACE_XHI, GM_FACE_YLO, GM_FACE_YHI, GM_FACE_ZLO, GM_F
 
 /* ---- options and creation ----------------------------------------------------------------- */
 
+/* How a step walks the grid. Both compute bitwise the same fields. AUTO: a 3-D grid without
+ * CPML, TF/SF or periodic faces does a step as one sweep over z planes (E plane k, then H plane
+ * k−1: each array streamed once a step instead of 1.5 times; threads take slabs of planes);
+ * otherwise two sweeps. HALF_STEPS: always two sweeps (E, then H). */
+typedef enum gm_yee_sweep { GM_YEE_SWEEP_AUTO = 0, GM_YEE_SWEEP_HALF_STEPS = 1 } gm_yee_sweep;
+
 typedef struct gm_yee_options {
   double dt;                   /* time step; <= 0: courant × the Courant limit */
   double courant;              /* fraction of the limit used when dt <= 0 (default 0.99) */
@@ -160,6 +166,7 @@ typedef struct gm_yee_options {
                                   any axis: complex fields (a real and an imaginary array per
                                   component, coupled only through the periodic faces). */
   int n_threads;               /* OpenMP threads of the updates; 0: OpenMP's default */
+  gm_yee_sweep sweep;          /* how a step walks the grid (default GM_YEE_SWEEP_AUTO) */
 } gm_yee_options;
 
 gm_yee_options gm_yee_defaults(void);
@@ -184,6 +191,9 @@ gm_status gm_yee_create(const gm_yee_grid *grid, const gm_yee_materials *materia
 void gm_yee_free(gm_yee *solver);
 /* What failed and why, for the last error of this solver ("" when none). */
 const char *gm_yee_errmsg(const gm_yee *solver);
+/* 1 when a step is done as one sweep (gm_yee_sweep AUTO and the conditions there hold now:
+ * adding a CPML, TF/SF wave changes it), else 0. */
+int gm_yee_one_sweep(const gm_yee *solver);
 
 /* ---- sources ------------------------------------------------------------------------------ */
 
@@ -272,6 +282,38 @@ typedef struct gm_plane_wave {
 } gm_plane_wave;
 
 gm_status gm_yee_add_plane_wave(gm_yee *solver, const gm_plane_wave *wave, size_t *id);
+
+/* Total-field/scattered-field plane wave at any angle on a 2-D or 3-D grid (Taflove & Hagness
+ * §5.8–5.9, the incident-field array): a 1-D Yee grid along the direction of travel, its
+ * spacing chosen so that its numerical phase velocity equals the grid's along that direction
+ * at match_frequency, read at each coupled location by interpolation (cubic or linear). Unlike the
+ * axis-aligned wave the cancellation outside the box is not exact: the leakage measured is in
+ * docs/maxwell.md. Angles in degrees:
+ *   k̂ = (sin θ cos φ, sin θ sin φ, cos θ),
+ *   ê = (cos ψ sin φ − sin ψ cos θ cos φ, −cos ψ cos φ − sin ψ cos θ sin φ, sin ψ sin θ),
+ *   ĥ = k̂ × ê; incident E = e ê, H = (e/η) ĥ.
+ * 2-D grids need θ = 90 (travel in the x-y plane); TM (E_z) is ψ = 90, TE (E in the plane)
+ * ψ = 0. θ, φ, ψ at multiples of 90 give exact axis vectors. The wave is amplitude · g(t) at
+ * the aux grid's driven node a few cells before the corner of the box it reaches first.
+ * Errors: a 1-D grid, a component the grid lacks, non-finite angles, a bad box (as
+ * gm_yee_add_plane_wave), a match frequency beyond the grid's cut-off, a matched spacing below
+ * c Δt (the 1-D grid would be unstable). */
+typedef enum gm_interpolation {
+  GM_INTERP_CUBIC = 0,  /* 4-point Lagrange: the default (leakage in docs/maxwell.md) */
+  GM_INTERP_LINEAR = 1  /* 2-point, as Taflove & Hagness */
+} gm_interpolation;
+
+typedef struct gm_oblique_wave {
+  double theta, phi, psi;         /* degrees */
+  size_t lo[3], hi[3];            /* TF box as in gm_plane_wave */
+  double match_frequency;         /* 0: the waveform's frequency, or 1/(2π width) if that is 0 */
+  gm_waveform wave;
+  gm_interpolation interpolation; /* of the incident-field array (default cubic) */
+} gm_oblique_wave;
+
+gm_status gm_yee_add_oblique_wave(gm_yee *solver, const gm_oblique_wave *wave, size_t *id);
+/* The unit vectors k̂, ê, ĥ of an oblique wave (above). */
+void gm_oblique_wave_vectors(const gm_oblique_wave *wave, double k[3], double e[3], double h[3]);
 
 /* ---- initial fields ----------------------------------------------------------------------- */
 

@@ -31,6 +31,9 @@ typedef struct mx_scene {
   gm_point_source *points;        /* owned */
   gm_plane_wave *planes;          /* owned */
   size_t *point_json, *plane_json; /* owned: index of each in the JSON "sources" array */
+  size_t n_obliques;
+  gm_oblique_wave *obliques;      /* owned: plane waves given by angles */
+  size_t *oblique_json;           /* owned: as point_json */
   size_t n_probes, n_fluxes;
   mx_probe *probes;               /* owned */
   mx_flux *fluxes;                /* owned */

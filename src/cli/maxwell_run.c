@@ -280,7 +280,7 @@ static int print_check(const char *path, const mx_scene *sc, const gm_yee *solve
     cJSON_AddItemToObject(o, "h", cli_json_numbers(sc->grid.h, 3));
     cJSON_AddNumberToObject(o, "dt", gm_yee_dt(solver));
     cJSON_AddNumberToObject(o, "steps", (double)steps);
-    cJSON_AddNumberToObject(o, "sources", (double)(sc->n_points + sc->n_planes));
+    cJSON_AddNumberToObject(o, "sources", (double)(sc->n_points + sc->n_planes + sc->n_obliques));
     cJSON_AddNumberToObject(o, "probes", (double)sc->n_probes);
     cJSON_AddNumberToObject(o, "flux_planes", (double)sc->n_fluxes);
     cJSON_AddNumberToObject(o, "memory_bytes", (double)bytes);
@@ -290,7 +290,7 @@ static int print_check(const char *path, const mx_scene *sc, const gm_yee *solve
   printf("maxwell run %s: scene is valid\n", path);
   printf("  %s grid %zu x %zu x %zu cells, dt %.6g, %zu steps, %zu sources, %zu probes, "
          "%zu flux planes, %.1f MB in %zu grid arrays\n", dim_name(sc->grid.dim), sc->grid.n[0],
-         sc->grid.n[1], sc->grid.n[2], gm_yee_dt(solver), steps, sc->n_points + sc->n_planes,
+         sc->grid.n[1], sc->grid.n[2], gm_yee_dt(solver), steps, sc->n_points + sc->n_planes + sc->n_obliques,
          sc->n_probes, sc->n_fluxes, (double)bytes / 1e6, n_arrays);
   return CLI_EXIT_OK;
 }

@@ -506,6 +506,51 @@ static int parse_waveform(parser *p, const cJSON *obj, gm_waveform *w) {
   return rc;
 }
 
+/* A plane wave with angle fields: theta, phi, psi in degrees (gm_oblique_wave), optional
+ * match_frequency and interpolation ("cubic", "linear"). */
+static int parse_oblique(parser *p, const cJSON *item, size_t axes, gm_oblique_wave *ow) {
+  static const char *const keys[] = {"type", "theta", "phi", "psi", "lo", "hi", "waveform",
+                                     "match_frequency", "interpolation", NULL};
+  double lo[3], hi[3];
+  const char *interp = "cubic";
+  memset(ow, 0, sizeof *ow);
+  ow->theta = 90.0;
+  ow->psi = axes == 2 ? 90.0 : 0.0;
+  if (check_keys(p, item, keys) != 0 || get_number(p, item, "theta", 0, &ow->theta) < 0 ||
+      get_number(p, item, "phi", 1, &ow->phi) != 0 ||
+      get_number(p, item, "psi", 0, &ow->psi) < 0 ||
+      get_vector(p, item, "lo", 1, axes, 3, 0, lo) != 0 ||
+      get_vector(p, item, "hi", 1, axes, 3, 0, hi) != 0 ||
+      get_number(p, item, "match_frequency", 0, &ow->match_frequency) < 0 ||
+      get_string(p, item, "interpolation", 0, &interp) < 0 ||
+      parse_waveform(p, item, &ow->wave) != 0)
+    return -1;
+  if (strcmp(interp, "cubic") == 0 || strcmp(interp, "linear") == 0) {
+    ow->interpolation = interp[0] == 'c' ? GM_INTERP_CUBIC : GM_INTERP_LINEAR;
+  } else {
+    size_t o = push_key(p, "interpolation");
+    int rc = fail(p, "expected \"cubic\" or \"linear\", got \"%s\"", interp);
+    pop(p, o);
+    return rc;
+  }
+  for (size_t a = 0; a < 3; ++a) {
+    /* lo and hi are vertex indices of the total-field box */
+    const char *key = NULL;
+    if (lo[a] < 0 || floor(lo[a]) != lo[a]) key = "lo";
+    if (hi[a] < 0 || floor(hi[a]) != hi[a]) key = "hi";
+    if (key != NULL) {
+      size_t o2 = push_key(p, key), o3 = push_index(p, a);
+      int rc = fail(p, "expected a vertex index (a non-negative integer)");
+      pop(p, o3);
+      pop(p, o2);
+      return rc;
+    }
+    ow->lo[a] = (size_t)lo[a];
+    ow->hi[a] = (size_t)hi[a];
+  }
+  return 0;
+}
+
 static int parse_sources(parser *p, const cJSON *root, mx_scene *s) {
   const cJSON *list;
   int rc = get_array(p, root, "sources", &list);
@@ -515,7 +560,10 @@ static int parse_sources(parser *p, const cJSON *root, mx_scene *s) {
   s->planes = calloc(n + 1, sizeof *s->planes);
   s->point_json = calloc(n + 1, sizeof *s->point_json);
   s->plane_json = calloc(n + 1, sizeof *s->plane_json);
-  if (s->points == NULL || s->planes == NULL || s->point_json == NULL || s->plane_json == NULL)
+  s->obliques = calloc(n + 1, sizeof *s->obliques);
+  s->oblique_json = calloc(n + 1, sizeof *s->oblique_json);
+  if (s->points == NULL || s->planes == NULL || s->point_json == NULL || s->plane_json == NULL ||
+      s->obliques == NULL || s->oblique_json == NULL)
     return fail(p, "out of memory");
   size_t old = push_key(p, "sources");
   size_t axes = gm_yee_dim_axes(s->grid.dim);
@@ -548,6 +596,10 @@ static int parse_sources(parser *p, const cJSON *root, mx_scene *s) {
         pop(p, o2);
       }
       if (rc == 0) s->point_json[s->n_points++] = i - 1;
+    } else if (rc == 0 && strcmp(type, "plane-wave") == 0 &&
+               (member(item, "theta") || member(item, "phi") || member(item, "psi"))) {
+      rc = parse_oblique(p, item, axes, &s->obliques[s->n_obliques]);
+      if (rc == 0) s->oblique_json[s->n_obliques++] = i - 1;
     } else if (rc == 0 && strcmp(type, "plane-wave") == 0) {
       static const char *const keys[] = {"type", "axis", "direction", "polarization", "lo",
                                          "hi", "waveform", NULL};
@@ -875,6 +927,8 @@ void mx_scene_clear(mx_scene *s) {
   free(s->planes);
   free(s->point_json);
   free(s->plane_json);
+  free(s->obliques);
+  free(s->oblique_json);
   free(s->probes);
   free(s->fluxes);
   memset(s, 0, sizeof *s);
@@ -903,6 +957,12 @@ int mx_scene_build(mx_scene *s, const char *name, gm_yee **out, char *msg, size_
   for (size_t k = 0; k < s->n_planes; ++k)
     if (gm_yee_add_plane_wave(solver, &s->planes[k], NULL) != GM_OK) {
       snprintf(msg, cap, "%s: sources[%zu]: %s", name, s->plane_json[k], gm_yee_errmsg(solver));
+      gm_yee_free(solver);
+      return CLI_EXIT_USAGE;
+    }
+  for (size_t k = 0; k < s->n_obliques; ++k)
+    if (gm_yee_add_oblique_wave(solver, &s->obliques[k], NULL) != GM_OK) {
+      snprintf(msg, cap, "%s: sources[%zu]: %s", name, s->oblique_json[k], gm_yee_errmsg(solver));
       gm_yee_free(solver);
       return CLI_EXIT_USAGE;
     }

@@ -50,6 +50,8 @@ typedef struct yee_cpml_term {
 typedef struct yee_source {
   size_t n;              /* locations */
   size_t *index;         /* array indices */
+  size_t index_min, index_max; /* their range */
+  double g;              /* waveform value of the current E half step (one-sweep step) */
   double *coef;          /* per location: soft: −Δt/ε·weight (or −Δt/μ·weight); hard: weight */
   int component;
   int hard;
@@ -83,6 +85,9 @@ typedef struct yee_tfsf_corr {
   int *comp;
   size_t *target, *aux;
   double *coef;
+  double *frac;          /* oblique waves: incident = (1 − frac) aux[j] + frac aux[j + 1];
+                            NULL: aux[j] (axis-aligned) */
+  int cubic;             /* with frac: the cubic through aux[j − 1 … j + 2] instead */
 } yee_tfsf_corr;
 
 typedef struct yee_tfsf {
@@ -112,6 +117,11 @@ struct gm_yee {
   void (*update_h[3])(gm_yee *s, int part, const yee_box *box);
   void (*fused_e)(gm_yee *s, int part, const yee_box *box);
   void (*fused_h)(gm_yee *s, int part, const yee_box *box);
+  /* the same kernels without worksharing: all rows on the calling thread (one-sweep step) */
+  void (*update_e1[3])(gm_yee *s, int part, const yee_box *box);
+  void (*update_h1[3])(gm_yee *s, int part, const yee_box *box);
+  void (*fused_e1)(gm_yee *s, int part, const yee_box *box);
+  void (*fused_h1)(gm_yee *s, int part, const yee_box *box);
   yee_box fused_box[2];  /* E, H (cnt 0 when not fused) */
   yee_box rest[GM_YEE_N_COMPONENTS][6];
   size_t n_rest[GM_YEE_N_COMPONENTS];
@@ -167,8 +177,16 @@ void yee_update_h(gm_yee *s);
 gm_status yee_cpml_setup(gm_yee *s, gm_error *err);
 void yee_cpml_apply(gm_yee *s, int e_field);
 void yee_sources_apply(gm_yee *s, int e_field);
+void yee_sources_begin_e(gm_yee *s);
+void yee_sources_apply_plane(gm_yee *s, size_t lo, size_t n);
+int yee_wavefront_eligible(const gm_yee *s);
+void yee_step_wavefront(gm_yee *s);
 void yee_tfsf_apply(gm_yee *s, int e_field);
 void yee_tfsf_free(yee_tfsf *t);
+int yee_tfsf_push_corr(yee_tfsf_corr *c, size_t *cap, int comp, size_t target, size_t aux,
+                       double coef);
+int yee_tfsf_in_box(const gm_yee *s, const size_t lo[3], const size_t hi[3], int c,
+                    const long ijk[3]);
 int yee_locate(const gm_yee *s, int c, const double x[3], long ijk[3]);
 double yee_medium_cb_e(const gm_yee *s, int c, size_t index);
 double yee_medium_cb_h(const gm_yee *s, int c, size_t index);

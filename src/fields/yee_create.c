@@ -228,6 +228,9 @@ gm_status gm_yee_create(const gm_yee_grid *grid, const gm_yee_materials *materia
       return gm_error_set(err, GM_EINVAL, "yee: Bloch k along %c needs periodic %c faces", an[a],
                           an[a]);
   }
+  if (o.sweep != GM_YEE_SWEEP_AUTO && o.sweep != GM_YEE_SWEEP_HALF_STEPS)
+    return gm_error_set(err, GM_EINVAL, "yee: sweep must be auto (0) or half-steps (1) (got %d)",
+                        (int)o.sweep);
   /* CFL */
   double dt_max;
   st = gm_yee_courant_limit(grid, materials, &dt_max, err);

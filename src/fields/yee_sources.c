@@ -85,6 +85,8 @@ static gm_status build_source(gm_yee *s, int c, int hard, size_t n, const long (
     const double w = weights ? weights[l] : 1.0;
     const size_t q = yee_idx(&s->L, ijk[l][0], ijk[l][1], ijk[l][2]);
     src.index[l] = q;
+    if (l == 0 || q < src.index_min) src.index_min = q;
+    if (l == 0 || q > src.index_max) src.index_max = q;
     if (hard) {
       src.coef[l] = w;
     } else {
@@ -175,6 +177,37 @@ void yee_sources_apply(gm_yee *s, int e_field) {
     } else {
       for (size_t l = 0; l < src->n; ++l) field[src->index[l]] += src->coef[l] * g;
       for (size_t v = 0; v < src->n_vertices; ++v) src->rho[v] += src->drho[v] * g;
+    }
+  }
+}
+
+/* The one-sweep step (yee_update.c): the E sources' waveform values and charges once per step,
+ * then each plane's locations right after that plane's E update, with the same arithmetic as
+ * yee_sources_apply. */
+void yee_sources_begin_e(gm_yee *s) {
+  for (size_t i = 0; i < s->n_sources; ++i) {
+    yee_source *src = &s->sources[i];
+    if (!yee_is_e(src->component)) continue;
+    src->g = gm_waveform_value(&src->wave, ((double)s->step + src->time_shift) * s->dt);
+    if (!src->hard)
+      for (size_t v = 0; v < src->n_vertices; ++v) src->rho[v] += src->drho[v] * src->g;
+  }
+}
+
+void yee_sources_apply_plane(gm_yee *s, size_t lo, size_t n) {
+  double *restrict const *f = s->f[0];
+  for (size_t i = 0; i < s->n_sources; ++i) {
+    const yee_source *src = &s->sources[i];
+    if (!yee_is_e(src->component) || src->index_max < lo || src->index_min >= lo + n) continue;
+    double *field = f[src->component];
+    const double g = src->g;
+    for (size_t l = 0; l < src->n; ++l) {
+      const size_t q = src->index[l];
+      if (q < lo || q >= lo + n) continue;
+      if (src->hard)
+        field[q] = src->coef[l] * g;
+      else
+        field[q] += src->coef[l] * g;
     }
   }
 }

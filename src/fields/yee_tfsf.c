@@ -29,11 +29,12 @@ void yee_tfsf_free(yee_tfsf *t) {
     free(cs[i]->target);
     free(cs[i]->aux);
     free(cs[i]->coef);
+    free(cs[i]->frac);
   }
 }
 
-static int push_corr(yee_tfsf_corr *c, size_t *cap, int comp, size_t target, size_t aux,
-                     double coef) {
+int yee_tfsf_push_corr(yee_tfsf_corr *c, size_t *cap, int comp, size_t target, size_t aux,
+                       double coef) {
   if (c->n == *cap) {
     const size_t nc = *cap ? 2 * *cap : 256;
     int *a = realloc(c->comp, nc * sizeof *a);
@@ -45,6 +46,11 @@ static int push_corr(yee_tfsf_corr *c, size_t *cap, int comp, size_t target, siz
     double *e = realloc(c->coef, nc * sizeof *e);
     if (e) c->coef = e;
     if (!a || !b || !d || !e) return -1;
+    if (c->frac != NULL) {
+      double *f = realloc(c->frac, nc * sizeof *f);
+      if (f == NULL) return -1;
+      c->frac = f;
+    }
     *cap = nc;
   }
   c->comp[c->n] = comp;
@@ -61,13 +67,14 @@ typedef struct curl_term {
   double coef;
 } curl_term;
 
-/* Position of component c at index ijk in cell units, inside the closed TF box? */
-static int in_box(const gm_yee *s, const gm_plane_wave *w, int c, const long ijk[3]) {
+/* Position of component c at index ijk in cell units, inside the closed TF box [lo, hi]? */
+int yee_tfsf_in_box(const gm_yee *s, const size_t lo[3], const size_t hi[3], int c,
+                    const long ijk[3]) {
   double sh[3];
   gm_yee_component_shift(s->L.dim, (gm_yee_component)c, sh);
   for (int a = 0; a < s->n_axes; ++a) {
     const double x = (double)ijk[a] + sh[a];
-    if (x < (double)w->lo[a] || x > (double)w->hi[a]) return 0;
+    if (x < (double)lo[a] || x > (double)hi[a]) return 0;
   }
   return 1;
 }
@@ -155,7 +162,7 @@ gm_status gm_yee_add_plane_wave(gm_yee *s, const gm_plane_wave *w, size_t *id) {
           for (int b = 0; b < s->n_axes; ++b)
             near &= ijk[b] + 1 >= (long)w->lo[b] && ijk[b] <= (long)w->hi[b] + 1;
           if (!near) continue;
-          const int tf = in_box(s, w, c, ijk);
+          const int tf = yee_tfsf_in_box(s, w->lo, w->hi, c, ijk);
           const size_t q = yee_idx(&s->L, i, j, k);
           const double cb = ise ? yee_medium_cb_e(s, c, q) : yee_medium_cb_h(s, c, q);
           /* the four curl terms: (neighbour component, offset along its axis, coefficient) */
@@ -181,7 +188,7 @@ gm_status gm_yee_add_plane_wave(gm_yee *s, const gm_plane_wave *w, size_t *id) {
             if (terms[m].axis >= s->n_axes) continue; /* no variation along an absent axis */
             long nb[3] = {i, j, k};
             if (terms[m].axis < s->n_axes) nb[terms[m].axis] += terms[m].shift;
-            if (in_box(s, w, nc, nb) == tf) continue;
+            if (yee_tfsf_in_box(s, w->lo, w->hi, nc, nb) == tf) continue;
             /* aux index of the neighbour's position along a (E nodes at x, H at x + ½) */
             const long xg = nb[a];
             const long jaux = w->sign > 0 ? xg - x0 : x0 - xg - (ise ? 1 : 0);
@@ -192,7 +199,7 @@ gm_status gm_yee_add_plane_wave(gm_yee *s, const gm_plane_wave *w, size_t *id) {
             /* incident value of the neighbour: E_p = e, H_r = qsign · h (h_aux flipped) */
             const double inc_scale = ise ? qsign * hflip : 1.0;
             const double coef = (tf ? 1.0 : -1.0) * terms[m].coef * inc_scale;
-            if (push_corr(ise ? &t.ecorr : &t.hcorr, ise ? &cap_e : &cap_h, c, q, (size_t)jaux,
+            if (yee_tfsf_push_corr(ise ? &t.ecorr : &t.hcorr, ise ? &cap_e : &cap_h, c, q, (size_t)jaux,
                           coef) != 0) {
               yee_tfsf_free(&t);
               return gm_fail(msg, cap_msg, GM_ENOMEM, "plane wave: out of memory");
@@ -212,21 +219,41 @@ gm_status gm_yee_add_plane_wave(gm_yee *s, const gm_plane_wave *w, size_t *id) {
   return GM_OK;
 }
 
+/* target += coef · incident, the incident value read from one aux node or (oblique waves)
+ * interpolated linearly between two or by the cubic through four. */
+static void apply_corr(gm_yee *s, const yee_tfsf_corr *c, const double *aux) {
+  if (c->frac == NULL) {
+    for (size_t l = 0; l < c->n; ++l) s->f[0][c->comp[l]][c->target[l]] += c->coef[l] * aux[c->aux[l]];
+  } else if (!c->cubic) {
+    for (size_t l = 0; l < c->n; ++l) {
+      const size_t j = c->aux[l];
+      const double w = c->frac[l];
+      s->f[0][c->comp[l]][c->target[l]] += c->coef[l] * ((1.0 - w) * aux[j] + w * aux[j + 1]);
+    }
+  } else { /* 4-point Lagrange through nodes j − 1 … j + 2 at j + w */
+    for (size_t l = 0; l < c->n; ++l) {
+      const size_t j = c->aux[l];
+      const double w = c->frac[l], wp = w + 1.0, wm = w - 1.0, wmm = w - 2.0;
+      const double v = -w * wm * wmm / 6.0 * aux[j - 1] + wp * wm * wmm / 2.0 * aux[j] -
+                       wp * w * wmm / 2.0 * aux[j + 1] + wp * w * wm / 6.0 * aux[j + 2];
+      s->f[0][c->comp[l]][c->target[l]] += c->coef[l] * v;
+    }
+  }
+}
+
 void yee_tfsf_apply(gm_yee *s, int e_field) {
   for (size_t i = 0; i < s->n_tfsf; ++i) {
     yee_tfsf *t = &s->tfsf[i];
     const size_t n = t->n_aux;
     if (e_field) {
       /* corrections with the incident H^n, then the aux E to n + ½ */
-      const yee_tfsf_corr *c = &t->ecorr;
-      for (size_t l = 0; l < c->n; ++l) s->f[0][c->comp[l]][c->target[l]] += c->coef[l] * t->h[c->aux[l]];
+      apply_corr(s, &t->ecorr, t->h);
       for (size_t j = 1; j + 1 < n; ++j)
         t->e[j] = t->ca_e[j] * t->e[j] - t->cb_e[j] * (t->h[j] - t->h[j - 1]) * t->inv_h;
       t->e[n - 1] = 0.0;
       t->e[t->drive] = gm_waveform_value(&t->wave, ((double)s->step + 0.5) * s->dt);
     } else {
-      const yee_tfsf_corr *c = &t->hcorr;
-      for (size_t l = 0; l < c->n; ++l) s->f[0][c->comp[l]][c->target[l]] += c->coef[l] * t->e[c->aux[l]];
+      apply_corr(s, &t->hcorr, t->e);
       for (size_t j = 0; j + 1 < n; ++j)
         t->h[j] = t->ca_h[j] * t->h[j] - t->cb_h[j] * (t->e[j + 1] - t->e[j]) * t->inv_h;
     }

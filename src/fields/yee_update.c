@@ -19,12 +19,37 @@
  * choice of (uniform/per-location coefficients, lossless/lossy) is selected at create time:
  * no branch on options inside the loops. OpenMP over the two outer loops (z, y rows), SIMD over
  * the inner one (elementwise, no reductions: bitwise identical for any thread count). */
+#include <limits.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 #include <string.h>
 
 #include "fields/internal.h"
 
-#define E_KERNEL(NAME, A, B, C, INVB, INVC, UPDATE)                                           \
-  static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
+/* Runtime CPU dispatch of the update kernels: GCC compiles each kernel for generic x86-64,
+ * x86-64-v3 (AVX2) and x86-64-v4 (AVX-512) and picks one by the CPU at load time (ifunc), so a
+ * generic build runs the wide kernels where the CPU has them. The project compiles with
+ * -ffp-contract=off, so no clone fuses a multiply and an add: every clone rounds exactly as
+ * the generic one and results do not depend on the CPU (checked by hand: the fields after 150
+ * steps of a vacuum PEC box and of a CPML box with lossy media compare equal byte for byte
+ * between this build, running the AVX-512 clones, and a GM_CPU_DISPATCH=OFF build;
+ * docs/maxwell.md). GM_NO_CPU_DISPATCH (CMake GM_CPU_DISPATCH=OFF) turns it off. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__) && \
+    !defined(GM_NO_CPU_DISPATCH)
+#define YEE_CLONES __attribute__((target_clones("default", "arch=x86-64-v3", "arch=x86-64-v4")))
+#else
+#define YEE_CLONES
+#endif
+
+/* TEAM kernels share their rows among the threads of the enclosing parallel region (orphaned
+ * `omp for`); ONE kernels run all their rows on the calling thread (the one-sweep step gives each
+ * thread its own planes). */
+#define YEE_FOR_TEAM YEE_OMP(omp for collapse(2) schedule(static) nowait)
+#define YEE_FOR_ONE
+
+#define E_KERNEL(MODE, NAME, A, B, C, INVB, INVC, UPDATE)                                           \
+  YEE_CLONES static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
     double *restrict E = s->f[p][A];                                                          \
     const double *restrict Hc = s->f[p][3 + C];                                               \
     const double *restrict Hb = s->f[p][3 + B];                                               \
@@ -38,7 +63,7 @@
     const long j0 = (long)bx->lo[1], j1 = j0 + (long)bx->cnt[1];                              \
     const long k0 = (long)bx->lo[2], k1 = k0 + (long)bx->cnt[2];                              \
     (void)cbv; (void)cav; (void)cb0; (void)ca0; (void)ix; (void)iy; (void)iz;                 \
-    YEE_OMP(omp for collapse(2) schedule(static) nowait)                                      \
+    YEE_FOR_##MODE                                                                            \
     for (long k = k0; k < k1; ++k)                                                            \
       for (long j = j0; j < j1; ++j) {                                                        \
         const long row = (long)yee_idx(&s->L, 0, j, k);                                       \
@@ -51,8 +76,8 @@
       }                                                                                       \
   }
 
-#define H_KERNEL(NAME, A, B, C, INVB, INVC, UPDATE)                                           \
-  static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
+#define H_KERNEL(MODE, NAME, A, B, C, INVB, INVC, UPDATE)                                           \
+  YEE_CLONES static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
     double *restrict H = s->f[p][3 + A];                                                      \
     const double *restrict Ec = s->f[p][C];                                                   \
     const double *restrict Eb = s->f[p][B];                                                   \
@@ -65,7 +90,7 @@
     const long j0 = (long)bx->lo[1], j1 = j0 + (long)bx->cnt[1];                              \
     const long k0 = (long)bx->lo[2], k1 = k0 + (long)bx->cnt[2];                              \
     (void)cbv; (void)cb0; (void)ix; (void)iy; (void)iz;                                       \
-    YEE_OMP(omp for collapse(2) schedule(static) nowait)                                      \
+    YEE_FOR_##MODE                                                                            \
     for (long k = k0; k < k1; ++k)                                                            \
       for (long j = j0; j < j1; ++j) {                                                        \
         const long row = (long)yee_idx(&s->L, 0, j, k);                                       \
@@ -86,27 +111,33 @@
 #define H_ARRAY H[q] -= cbv[q] * curl
 
 /* Ex: b = y, c = z; Ey: b = z, c = x; Ez: b = x, c = y. */
-#define E_FAMILY(SUFFIX, UPDATE)                                                              \
-  E_KERNEL(ex_##SUFFIX, 0, 1, 2, iy[j], iz[k], UPDATE)                                        \
-  E_KERNEL(ey_##SUFFIX, 1, 2, 0, iz[k], ix[i], UPDATE)                                        \
-  E_KERNEL(ez_##SUFFIX, 2, 0, 1, ix[i], iy[j], UPDATE)
-#define H_FAMILY(SUFFIX, UPDATE)                                                              \
-  H_KERNEL(hx_##SUFFIX, 0, 1, 2, iy[j], iz[k], UPDATE)                                        \
-  H_KERNEL(hy_##SUFFIX, 1, 2, 0, iz[k], ix[i], UPDATE)                                        \
-  H_KERNEL(hz_##SUFFIX, 2, 0, 1, ix[i], iy[j], UPDATE)
+#define E_FAMILY(MODE, SUFFIX, UPDATE)                                                        \
+  E_KERNEL(MODE, ex_##SUFFIX, 0, 1, 2, iy[j], iz[k], UPDATE)                                  \
+  E_KERNEL(MODE, ey_##SUFFIX, 1, 2, 0, iz[k], ix[i], UPDATE)                                  \
+  E_KERNEL(MODE, ez_##SUFFIX, 2, 0, 1, ix[i], iy[j], UPDATE)
+#define H_FAMILY(MODE, SUFFIX, UPDATE)                                                        \
+  H_KERNEL(MODE, hx_##SUFFIX, 0, 1, 2, iy[j], iz[k], UPDATE)                                  \
+  H_KERNEL(MODE, hy_##SUFFIX, 1, 2, 0, iz[k], ix[i], UPDATE)                                  \
+  H_KERNEL(MODE, hz_##SUFFIX, 2, 0, 1, ix[i], iy[j], UPDATE)
 
-E_FAMILY(uniform, E_UNIFORM)
-E_FAMILY(uniform_lossy, E_UNIFORM_LOSSY)
-E_FAMILY(array, E_ARRAY)
-E_FAMILY(array_lossy, E_ARRAY_LOSSY)
-H_FAMILY(uniform, H_UNIFORM)
-H_FAMILY(array, H_ARRAY)
+E_FAMILY(TEAM, uniform, E_UNIFORM)
+E_FAMILY(TEAM, uniform_lossy, E_UNIFORM_LOSSY)
+E_FAMILY(TEAM, array, E_ARRAY)
+E_FAMILY(TEAM, array_lossy, E_ARRAY_LOSSY)
+H_FAMILY(TEAM, uniform, H_UNIFORM)
+H_FAMILY(TEAM, array, H_ARRAY)
+E_FAMILY(ONE, uniform_1, E_UNIFORM)
+E_FAMILY(ONE, uniform_lossy_1, E_UNIFORM_LOSSY)
+E_FAMILY(ONE, array_1, E_ARRAY)
+E_FAMILY(ONE, array_lossy_1, E_ARRAY_LOSSY)
+H_FAMILY(ONE, uniform_1, H_UNIFORM)
+H_FAMILY(ONE, array_1, H_ARRAY)
 
 /* 3-D: all three components of E (or H) in one sweep, so each array is streamed once per half
  * step. Per element the arithmetic is exactly the single-component kernels' (same operations in
  * the same order), so fused and unfused runs agree bitwise. */
-#define FUSED_E(NAME, UX, UY, UZ)                                                             \
-  static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
+#define FUSED_E(MODE, NAME, UPDATE)                                                                \
+  YEE_CLONES static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
     double *restrict Ex = s->f[p][0], *restrict Ey = s->f[p][1], *restrict Ez = s->f[p][2];   \
     const double *restrict Hx = s->f[p][3], *restrict Hy = s->f[p][4];                        \
     const double *restrict Hz = s->f[p][5];                                                   \
@@ -121,7 +152,7 @@ H_FAMILY(array, H_ARRAY)
     const long k0 = (long)bx->lo[2], k1 = k0 + (long)bx->cnt[2];                              \
     (void)cbx; (void)cby; (void)cbz; (void)cax; (void)cay; (void)caz; (void)ca0;              \
     (void)cb0x; (void)cb0y; (void)cb0z;                                                       \
-    YEE_OMP(omp for collapse(2) schedule(static) nowait)                                      \
+    YEE_FOR_##MODE                                                                            \
     for (long k = k0; k < k1; ++k)                                                            \
       for (long j = j0; j < j1; ++j) {                                                        \
         const long row = (long)yee_idx(&s->L, 0, j, k);                                       \
@@ -132,15 +163,13 @@ H_FAMILY(array, H_ARRAY)
           const double cx = (Hz[q] - Hz[q - sy]) * iyj - (Hy[q] - Hy[q - sz]) * izk;          \
           const double cy = (Hx[q] - Hx[q - sz]) * izk - (Hz[q] - Hz[q - sx]) * ix[i];        \
           const double cz = (Hy[q] - Hy[q - sx]) * ix[i] - (Hx[q] - Hx[q - sy]) * iyj;        \
-          UX;                                                                                 \
-          UY;                                                                                 \
-          UZ;                                                                                 \
+          UPDATE; /* the three components, in order (comma operator) */                     \
         }                                                                                     \
       }                                                                                       \
   }
 
-#define FUSED_H(NAME, UX, UY, UZ)                                                             \
-  static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
+#define FUSED_H(MODE, NAME, UPDATE)                                                                \
+  YEE_CLONES static void NAME(gm_yee *s, int p, const yee_box *bx) {                                    \
     double *restrict Hx = s->f[p][3], *restrict Hy = s->f[p][4], *restrict Hz = s->f[p][5];   \
     const double *restrict Ex = s->f[p][0], *restrict Ey = s->f[p][1];                        \
     const double *restrict Ez = s->f[p][2];                                                   \
@@ -153,7 +182,7 @@ H_FAMILY(array, H_ARRAY)
     const long j0 = (long)bx->lo[1], j1 = j0 + (long)bx->cnt[1];                              \
     const long k0 = (long)bx->lo[2], k1 = k0 + (long)bx->cnt[2];                              \
     (void)cbx; (void)cby; (void)cbz; (void)cb0x; (void)cb0y; (void)cb0z;                      \
-    YEE_OMP(omp for collapse(2) schedule(static) nowait)                                      \
+    YEE_FOR_##MODE                                                                            \
     for (long k = k0; k < k1; ++k)                                                            \
       for (long j = j0; j < j1; ++j) {                                                        \
         const long row = (long)yee_idx(&s->L, 0, j, k);                                       \
@@ -164,21 +193,29 @@ H_FAMILY(array, H_ARRAY)
           const double cx = (Ez[q + sy] - Ez[q]) * iyj - (Ey[q + sz] - Ey[q]) * izk;          \
           const double cy = (Ex[q + sz] - Ex[q]) * izk - (Ez[q + sx] - Ez[q]) * ix[i];        \
           const double cz = (Ey[q + sx] - Ey[q]) * ix[i] - (Ex[q + sy] - Ex[q]) * iyj;        \
-          UX;                                                                                 \
-          UY;                                                                                 \
-          UZ;                                                                                 \
+          UPDATE; /* the three components, in order (comma operator) */                     \
         }                                                                                     \
       }                                                                                       \
   }
 
-FUSED_E(e3_uniform, Ex[q] += cb0x * cx, Ey[q] += cb0y * cy, Ez[q] += cb0z * cz)
-FUSED_E(e3_uniform_lossy, Ex[q] = ca0 * Ex[q] + cb0x * cx, Ey[q] = ca0 * Ey[q] + cb0y * cy,
-        Ez[q] = ca0 * Ez[q] + cb0z * cz)
-FUSED_E(e3_array, Ex[q] += cbx[q] * cx, Ey[q] += cby[q] * cy, Ez[q] += cbz[q] * cz)
-FUSED_E(e3_array_lossy, Ex[q] = cax[q] * Ex[q] + cbx[q] * cx,
-        Ey[q] = cay[q] * Ey[q] + cby[q] * cy, Ez[q] = caz[q] * Ez[q] + cbz[q] * cz)
-FUSED_H(h3_uniform, Hx[q] -= cb0x * cx, Hy[q] -= cb0y * cy, Hz[q] -= cb0z * cz)
-FUSED_H(h3_array, Hx[q] -= cbx[q] * cx, Hy[q] -= cby[q] * cy, Hz[q] -= cbz[q] * cz)
+#define E3_UNIFORM Ex[q] += cb0x * cx, Ey[q] += cb0y * cy, Ez[q] += cb0z * cz
+#define E3_UNIFORM_LOSSY                                                                      \
+  Ex[q] = ca0 * Ex[q] + cb0x * cx, Ey[q] = ca0 * Ey[q] + cb0y * cy, Ez[q] = ca0 * Ez[q] + cb0z * cz
+#define E3_ARRAY Ex[q] += cbx[q] * cx, Ey[q] += cby[q] * cy, Ez[q] += cbz[q] * cz
+#define E3_ARRAY_LOSSY                                                                        \
+  Ex[q] = cax[q] * Ex[q] + cbx[q] * cx, Ey[q] = cay[q] * Ey[q] + cby[q] * cy,                 \
+  Ez[q] = caz[q] * Ez[q] + cbz[q] * cz
+#define H3_UNIFORM Hx[q] -= cb0x * cx, Hy[q] -= cb0y * cy, Hz[q] -= cb0z * cz
+#define H3_ARRAY Hx[q] -= cbx[q] * cx, Hy[q] -= cby[q] * cy, Hz[q] -= cbz[q] * cz
+#define FUSED_FAMILY(MODE, SUFFIX)                                                            \
+  FUSED_E(MODE, e3_uniform##SUFFIX, E3_UNIFORM)                                               \
+  FUSED_E(MODE, e3_uniform_lossy##SUFFIX, E3_UNIFORM_LOSSY)                                   \
+  FUSED_E(MODE, e3_array##SUFFIX, E3_ARRAY)                                                   \
+  FUSED_E(MODE, e3_array_lossy##SUFFIX, E3_ARRAY_LOSSY)                                       \
+  FUSED_H(MODE, h3_uniform##SUFFIX, H3_UNIFORM)                                               \
+  FUSED_H(MODE, h3_array##SUFFIX, H3_ARRAY)
+FUSED_FAMILY(TEAM, )
+FUSED_FAMILY(ONE, _1)
 
 /* The box the three components share, and each component's range minus it as ≤ 6 slabs. */
 static void split_ranges(gm_yee *s, int first, int fuse) {
@@ -231,14 +268,27 @@ void yee_select_kernels(gm_yee *s) {
                                      {hx_array, hy_array, hz_array}};
   static const kernel e3_tab[4] = {e3_uniform, e3_uniform_lossy, e3_array, e3_array_lossy};
   static const kernel h3_tab[2] = {h3_uniform, h3_array};
+  static const kernel e1_tab[4][3] = {{ex_uniform_1, ey_uniform_1, ez_uniform_1},
+                                      {ex_uniform_lossy_1, ey_uniform_lossy_1, ez_uniform_lossy_1},
+                                      {ex_array_1, ey_array_1, ez_array_1},
+                                      {ex_array_lossy_1, ey_array_lossy_1, ez_array_lossy_1}};
+  static const kernel h1_tab[2][3] = {{hx_uniform_1, hy_uniform_1, hz_uniform_1},
+                                      {hx_array_1, hy_array_1, hz_array_1}};
+  static const kernel e31_tab[4] = {e3_uniform_1, e3_uniform_lossy_1, e3_array_1,
+                                    e3_array_lossy_1};
+  static const kernel h31_tab[2] = {h3_uniform_1, h3_array_1};
   const int row = (s->uniform ? 0 : 2) + (s->lossy ? 1 : 0);
   for (int a = 0; a < 3; ++a) {
     s->update_e[a] = s->active[a] ? e_tab[row][a] : NULL;
     s->update_h[a] = s->active[3 + a] ? h_tab[s->uniform ? 0 : 1][a] : NULL;
+    s->update_e1[a] = s->active[a] ? e1_tab[row][a] : NULL;
+    s->update_h1[a] = s->active[3 + a] ? h1_tab[s->uniform ? 0 : 1][a] : NULL;
   }
   const int fuse = s->L.dim == GM_YEE_3D;
   s->fused_e = fuse ? e3_tab[row] : NULL;
   s->fused_h = fuse ? h3_tab[s->uniform ? 0 : 1] : NULL;
+  s->fused_e1 = fuse ? e31_tab[row] : NULL;
+  s->fused_h1 = fuse ? h31_tab[s->uniform ? 0 : 1] : NULL;
   split_ranges(s, 0, fuse);
   split_ranges(s, 3, fuse);
 }
@@ -274,3 +324,104 @@ static void update_field(gm_yee *s, int first) {
 
 void yee_update_e(gm_yee *s) { update_field(s, 0); }
 void yee_update_h(gm_yee *s) { update_field(s, 3); }
+
+/* ---- one step as a single sweep over z planes ----
+ * E at index q reads H at q and q − s (Ampère), H at q reads E at q and q + s (Faraday). So
+ * in index space E plane k needs H planes k and k−1 at the old level, and H plane k−1 needs E
+ * planes k−1 and k at the new level. One pass k = kmin … kmax+1 that updates E plane k, adds
+ * the E sources of that plane, then updates H plane k−1 therefore computes exactly the
+ * two-sweep step (each location runs the same kernel arithmetic on the same inputs: bitwise
+ * identical), while the E and H planes it touches twice stay in cache: per step each field
+ * array is read and written once instead of read twice. Used only where nothing else acts
+ * between the two half steps across whole planes: no CPML ψ slabs, no TF/SF, no periodic
+ * ghost copies (see yee_wavefront_eligible).
+ *
+ * Threads: thread t takes the E and H planes [a_t, a_{t+1}). Its first E plane reads H plane
+ * a_t − 1, which thread t − 1 updates last; its last H plane reads E plane a_{t+1}, which thread
+ * t + 1 updates first. So every thread but the first updates its first E plane, one barrier,
+ * then each sweeps the rest of its planes: one barrier a step, no plane read while written. */
+/* Each plane is walked in strips of rows, E strip then H strip below it: E(k, j) reads H(k − 1)
+ * only at the same j and H(k − 1, j) reads E(k) only at the same j, so the strip order is free,
+ * and the E(k) and H(k − 1) rows just touched stay in L2 (a 128² plane of six arrays does not).
+ * Measured at load 1 on the 128³ cavity, one thread: whole planes 244–254 Mcells·steps/s, strips
+ * of 8 rows 253, 16 262, 32 265–269, 48 267, 64 268 (docs/maxwell.md). */
+#define YEE_STRIP_ROWS 32
+
+/* b restricted to plane k and rows [j0, j1); 0 when that is empty. */
+static int box_in_strip(const yee_box *b, long k, long j0, long j1, yee_box *out) {
+  const long blo = (long)b->lo[1], bhi = blo + (long)b->cnt[1];
+  const long lo = j0 > blo ? j0 : blo, hi = j1 < bhi ? j1 : bhi;
+  if (b->cnt[0] == 0 || hi <= lo || k < (long)b->lo[2] || k >= (long)(b->lo[2] + b->cnt[2]))
+    return 0;
+  *out = *b;
+  out->lo[1] = (size_t)lo;
+  out->cnt[1] = (size_t)(hi - lo);
+  out->lo[2] = (size_t)k;
+  out->cnt[2] = 1;
+  return 1;
+}
+
+static void strip_field(gm_yee *s, int first, long k, long j0, long j1) {
+  void (*const *one)(gm_yee *, int, const yee_box *) = first == 0 ? s->update_e1 : s->update_h1;
+  void (*fused)(gm_yee *, int, const yee_box *) = first == 0 ? s->fused_e1 : s->fused_h1;
+  yee_box b;
+  if (fused != NULL && box_in_strip(&s->fused_box[first / 3], k, j0, j1, &b)) fused(s, 0, &b);
+  for (int a = 0; a < 3; ++a)
+    if (one[a] != NULL)
+      for (size_t r = 0; r < s->n_rest[first + a]; ++r)
+        if (box_in_strip(&s->rest[first + a][r], k, j0, j1, &b)) one[a](s, 0, &b);
+}
+
+/* E on rows [j0, j1) of plane k and the E sources there (contiguous in memory: x fastest). */
+static void strip_e(gm_yee *s, long k, long j0, long j1) {
+  const long row = (long)s->L.stride[1], plane = (long)s->L.stride[2];
+  strip_field(s, 0, k, j0, j1);
+  yee_sources_apply_plane(
+      s, (size_t)((k + (long)s->L.offset[2]) * plane + (j0 + (long)s->L.offset[1]) * row),
+      (size_t)((j1 - j0) * row));
+}
+
+int yee_wavefront_eligible(const gm_yee *s) {
+  if (s->L.dim != GM_YEE_3D || s->n_parts != 1 || s->n_cpml != 0 || s->n_tfsf != 0) return 0;
+  if (s->fused_e1 == NULL || s->opt.sweep == GM_YEE_SWEEP_HALF_STEPS) return 0;
+  for (int a = 0; a < 3; ++a)
+    if (s->periodic[a]) return 0;
+  return 1;
+}
+
+int gm_yee_one_sweep(const gm_yee *s) { return s != NULL && yee_wavefront_eligible(s); }
+
+void yee_step_wavefront(gm_yee *s) {
+  long k0 = LONG_MAX, k1 = LONG_MIN, jlo = LONG_MAX, jhi = LONG_MIN;
+  for (int c = 0; c < GM_YEE_N_COMPONENTS; ++c)
+    if (s->upd[c].cnt[2] > 0 && s->upd[c].cnt[1] > 0) {
+      k0 = (long)s->upd[c].lo[2] < k0 ? (long)s->upd[c].lo[2] : k0;
+      const long hi = (long)(s->upd[c].lo[2] + s->upd[c].cnt[2]);
+      k1 = hi > k1 ? hi : k1;
+      jlo = (long)s->upd[c].lo[1] < jlo ? (long)s->upd[c].lo[1] : jlo;
+      const long hj = (long)(s->upd[c].lo[1] + s->upd[c].cnt[1]);
+      jhi = hj > jhi ? hj : jhi;
+    }
+  const long rows = YEE_STRIP_ROWS;
+  /* threads only on grids above the OpenMP threshold, with ≥ 2 planes each */
+  int nt = largest_box(s, 0) > YEE_OMP_MIN ? s->n_threads : 1;
+  if (nt > (k1 - k0) / 2) nt = (int)((k1 - k0) / 2) > 1 ? (int)((k1 - k0) / 2) : 1;
+  YEE_OMP(omp parallel num_threads(nt))
+  {
+    int t = 0, team = 1;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+    team = omp_get_num_threads();
+#endif
+    const long a = k0 + (k1 - k0) * t / team, b = k0 + (k1 - k0) * (t + 1) / team;
+    if (t > 0)
+      for (long j = jlo; j < jhi; j += rows) strip_e(s, a, j, j + rows < jhi ? j + rows : jhi);
+    YEE_OMP(omp barrier)
+    for (long k = a; k <= b; ++k)
+      for (long j = jlo; j < jhi; j += rows) {
+        const long je = j + rows < jhi ? j + rows : jhi;
+        if (k < b && (t == 0 || k > a)) strip_e(s, k, j, je);
+        if (k > a) strip_field(s, 3, k - 1, j, je);
+      }
+  }
+}

@@ -471,3 +471,60 @@ Test(cli_maxwell, mesh_e5, .timeout = 300) {
   cr_expect_eq(r.status, 2, "%s", r.err);
   run_output_free(&r);
 }
+
+/* A plane wave given by angles (oblique TF/SF): inside the box a probe sees the pulse, outside
+ * only the leakage (below −50 dB with cubic interpolation, tests/invariants/
+ * test_yee_tfsf_oblique.c); bad angle fields are errors with their JSON path. */
+static double csv_column_max(const char *csv, int column) {
+  double mx = 0.0;
+  const char *line = strchr(csv, '\n');
+  while (line != NULL && line[1] != '\0') {
+    const char *at = line + 1;
+    for (int c = 0; c < column; ++c) at = strchr(at, ',') + 1;
+    mx = fmax(mx, fabs(strtod(at, NULL)));
+    line = strchr(at, '\n');
+  }
+  return mx;
+}
+
+Test(cli_maxwell, run_oblique_plane_wave) {
+  write_text("ob.json",
+             "{\"grid\": {\"dim\": \"2d-tm\", \"cells\": [80, 80], \"size\": [8, 8]},\n"
+             " \"boundaries\": {\"x\": \"cpml\", \"y\": \"cpml\"}, \"pml\": {\"thickness\": 10},\n"
+             " \"sources\": [{\"type\": \"plane-wave\", \"theta\": 90, \"phi\": 25, \"psi\": 90,\n"
+             "   \"lo\": [20, 20], \"hi\": [60, 60],\n"
+             "   \"waveform\": {\"kind\": \"gaussian\", \"frequency\": 0.5, \"width\": 2, \"delay\": 10}}],\n"
+             " \"probes\": [{\"name\": \"in\", \"component\": \"Ez\", \"position\": [4, 4]},\n"
+             "   {\"name\": \"out\", \"component\": \"Ez\", \"position\": [1.6, 5.1]}],\n"
+             " \"run\": {\"time\": 30}}\n");
+  run_output r = run_cli("maxwell run ob.json --out out --threads 1");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  run_output_free(&r);
+  char *csv = read_file(path_in_tmp("out/probes.csv"));
+  const double in = csv_column_max(csv, 2), out = csv_column_max(csv, 3);
+  free(csv);
+  cr_log_info("oblique scene: max |Ez| inside %.4f, outside %.3g (%.1f dB)", in, out,
+              20 * log10(out / in));
+  cr_expect_gt(in, 0.95);
+  cr_expect_lt(in, 1.05);
+  cr_expect_lt(out, pow(10.0, -50.0 / 20.0) * in);
+
+  const char *bad[][2] = {
+      {"\"interpolation\": \"spline\",", "sources[0].interpolation: expected \"cubic\" or \"linear\""},
+      {"\"theta\": 80,", "sources[0]: oblique wave: on a 2-D grid the wave travels in the x-y plane"},
+      {"\"psi\": \"up\",", "sources[0].psi: expected a number"},
+      {"\"axis\": \"x\",", "sources[0].axis: unknown key"}};
+  for (size_t k = 0; k < sizeof bad / sizeof *bad; ++k) {
+    char text[2048];
+    snprintf(text, sizeof text,
+             "{\"grid\": {\"dim\": \"2d-tm\", \"cells\": [40, 40], \"size\": [4, 4]},\n"
+             " \"sources\": [{\"type\": \"plane-wave\", \"phi\": 25, %s\n"
+             "   \"lo\": [10, 10], \"hi\": [30, 30],\n"
+             "   \"waveform\": {\"kind\": \"gaussian\", \"frequency\": 0.5, \"width\": 2, \"delay\": 10}}],\n"
+             " \"run\": {\"steps\": 5}}\n",
+             bad[k][0]);
+    write_text("bad.json", text);
+    r = expect_usage_error("bad.json", bad[k][1]);
+    run_output_free(&r);
+  }
+}
