@@ -300,3 +300,83 @@ Test(pde_gauss_dispersion, sampled_data_stall_in_time) {
   cr_assert(d[1][0] / d[1][1] > 12.0 && d[1][1] / d[1][2] > 12.0, "physical data ratios %.2f %.2f",
             d[1][0] / d[1][1], d[1][1] / d[1][2]);
 }
+
+/* The same on the linear Schrödinger equation iψ_t + ψ_xx = 0 in the NLS form s = (p, q, v, w)
+ * (gm_pde_nls's 𝕎, 𝕂 with S = ½(v² + w²)): for μ = iy/H the mode is ẑ = (1, −i, μ, −iμ) with
+ * λ = iμ², so the spurious branch's frequency is (12/(κH²))². */
+static double ls_S(const double *s, const void *c) {
+  (void)c;
+  return 0.5 * (s[2] * s[2] + s[3] * s[3]);
+}
+static void ls_grad(const double *s, double *g, const void *c) {
+  (void)c;
+  g[0] = g[1] = 0.0;
+  g[2] = s[2];
+  g[3] = s[3];
+}
+static void ls_hess(const double *s, double *h, const void *c) {
+  (void)c;
+  (void)s;
+  memset(h, 0, 16 * sizeof *h);
+  h[10] = h[15] = 1.0;
+}
+
+/* ψ = Σ_{k=1,2} e^{ikx}/k: point-sampled, or on the physical branch with exact cell means */
+static double *ls_run(size_t n, double dt, double T, int physical) {
+  double *s0 = calloc(4 * n, sizeof *s0), H = 2.0 * LX / (double)n;
+  for (int k = 1; k <= 2; k++) {
+    double kH = (double)k * H, y = ybranch(kH, 0);
+    double complex mu = I * y / H, zh[4] = {1.0, -I, mu, -I * mu}, r[2];
+    rvec(mu * H, r);
+    for (size_t m = 0; m < n / 2; m++)
+      for (size_t j = 0; j < 2; j++) {
+        double x = H * ((double)m + (j ? 0.5 + SQ3 / 6 : 0.5 - SQ3 / 6));
+        double complex ex[4] = {1.0, -I, I * k, (double)k};
+        for (size_t a = 0; a < 4; a++)
+          s0[(2 * m + j) * 4 + a] +=
+              creal(physical ? y / kH / k * cexp(I * kH * (double)m) * r[j] * zh[a]
+                             : cexp(I * k * x) / k * ex[a]);
+      }
+  }
+  gm_pde_equation eq = gm_pde_nls();
+  eq.name = "linear-schroedinger";
+  eq.S = ls_S;
+  eq.gradient = ls_grad;
+  eq.hessian = ls_hess;
+  const gm_pde_scheme *sc = NULL;
+  cr_assert_eq(gm_pde_scheme_find("gauss-prk", &sc), GM_OK);
+  gm_pde_grid g = {n, LX / (double)n, 0.0, {0}};
+  gm_pde_options o = gm_pde_options_defaults();
+  o.dt = dt;
+  gm_pde *p = NULL;
+  gm_error err = {{0}};
+  cr_assert_eq(gm_pde_create(&g, &eq, sc, &o, s0, &p, &err), GM_OK, "%s", err.message);
+  cr_assert_eq(gm_pde_advance(p, (size_t)llround(T / dt), &err), GM_OK, "%s", err.message);
+  memcpy(s0, gm_pde_state(p), 4 * n * sizeof *s0);
+  gm_pde_free(p);
+  return s0; /* owned */
+}
+
+Test(pde_gauss_dispersion, schroedinger_stall_and_order) {
+  size_t n = 32;
+  double T = 1.0, d[2][3];
+  for (int phys = 0; phys < 2; phys++) {
+    double *ref = ls_run(n, 0.003125, T, phys);
+    for (int q = 0; q < 3; q++) {
+      double *s = ls_run(n, 0.1 / (double)(1 << q), T, phys), e = 0.0;
+      for (size_t i = 0; i < n; i++)
+        e = fmax(e, hypot(s[4 * i] - ref[4 * i], s[4 * i + 1] - ref[4 * i + 1]));
+      d[phys][q] = e;
+      free(s);
+    }
+    free(ref);
+  }
+  cr_log_info("gauss-prk linear Schroedinger n = 32, max |ψ(dt) − ψ(0.003125)| at T = 1 for "
+              "dt = 0.1, 0.05, 0.025: sampled data %.3e %.3e %.3e (ratios %.2f %.2f); "
+              "physical-branch data %.3e %.3e %.3e (orders %.3f %.3f)",
+              d[0][0], d[0][1], d[0][2], d[0][0] / d[0][1], d[0][1] / d[0][2], d[1][0], d[1][1],
+              d[1][2], log2(d[1][0] / d[1][1]), log2(d[1][1] / d[1][2]));
+  cr_assert(d[0][1] / d[0][2] < 4.0 && d[0][0] / d[0][1] < 4.0, "sampled: expected a stall");
+  cr_assert(fabs(log2(d[1][0] / d[1][1]) - 4.0) <= 0.3 && fabs(log2(d[1][1] / d[1][2]) - 4.0) <= 0.3,
+            "physical-branch time orders");
+}
