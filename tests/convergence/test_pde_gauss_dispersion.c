@@ -159,8 +159,14 @@ static double cell_mean_error(const double *s, size_t n, double t) {
   return e;
 }
 
+/* physical: 0 point-sampled, 1 physical branch, 2 point-sampled then gm_pde_gauss_project */
 static double *kg_run(size_t n, double dt, double T, int physical) {
-  double *s0 = kg_data(n, physical);
+  double *s0 = kg_data(n, physical == 1);
+  if (physical == 2) {
+    gm_pde_grid g = {n, LX / (double)n, 0.0, {0}};
+    gm_error err = {{0}};
+    cr_assert_eq(gm_pde_gauss_project(&g, 3, s0, &err), GM_OK, "%s", err.message);
+  }
   gm_pde *p = kg_solver(n, dt, s0);
   gm_error err = {{0}};
   cr_assert_eq(gm_pde_advance(p, (size_t)llround(T / dt), &err), GM_OK, "%s", err.message);
@@ -269,8 +275,8 @@ static double spurious_part(size_t n, int k) {
  * stop converging at that level, while from physical-branch data they converge at order 4. */
 Test(pde_gauss_dispersion, sampled_data_stall_in_time) {
   size_t n = 32;
-  double T = 4.0, d[2][3];
-  for (int phys = 0; phys < 2; phys++) {
+  double T = 4.0, d[3][3];
+  for (int phys = 0; phys < 3; phys++) {
     double *ref = kg_run(n, 0.0125, T, phys);
     for (int q = 0; q < 3; q++) {
       double *s = kg_run(n, 0.2 / (double)(1 << q), T, phys);
@@ -299,6 +305,20 @@ Test(pde_gauss_dispersion, sampled_data_stall_in_time) {
             d[0][1] / d[0][2]);
   cr_assert(d[1][0] / d[1][1] > 12.0 && d[1][1] / d[1][2] > 12.0, "physical data ratios %.2f %.2f",
             d[1][0] / d[1][1], d[1][1] / d[1][2]);
+  cr_log_info("same, point-sampled data after gm_pde_gauss_project: %.3e %.3e %.3e (ratios %.2f "
+              "%.2f)", d[2][0], d[2][1], d[2][2], d[2][0] / d[2][1], d[2][1] / d[2][2]);
+  cr_assert(d[2][0] / d[2][1] > 12.0 && d[2][1] / d[2][2] > 12.0, "projected data ratios %.2f %.2f",
+            d[2][0] / d[2][1], d[2][1] / d[2][2]);
+  /* the projection keeps physical-branch data (u, v; w is passive and left as sampled) */
+  double *ph = kg_data(n, 1), *pr = kg_data(n, 1), dev = 0.0;
+  gm_pde_grid g = {n, LX / (double)n, 0.0, {0}};
+  gm_error err = {{0}};
+  cr_assert_eq(gm_pde_gauss_project(&g, 3, pr, &err), GM_OK, "%s", err.message);
+  for (size_t i = 0; i < 3 * n; i++) dev = fmax(dev, fabs(pr[i] - ph[i]));
+  cr_log_info("gm_pde_gauss_project of physical-branch data changes it by %.2e", dev);
+  cr_assert(dev <= 1e-13, "projection moved physical data by %.2e", dev);
+  free(ph);
+  free(pr);
 }
 
 /* The same on the linear Schrödinger equation iψ_t + ψ_xx = 0 in the NLS form s = (p, q, v, w)
