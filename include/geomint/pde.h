@@ -155,6 +155,14 @@ typedef struct gm_pde gm_pde;
  * the initial data there. */
 double gm_pde_point_x(const gm_pde_scheme *scheme, const gm_pde_grid *grid, size_t i);
 
+/* gauss-prk only: moves Gauss-point data s (grid->n points × dim, in place) onto the physical
+ * branch of the scheme's discrete dispersion relation, removing per component and wavenumber
+ * the part on the spurious spatial branch (docs/pde.md). Point-sampled smooth data carry
+ * O(H³) there, which makes fixed-grid results depend on Δt at that level. Exact for linear
+ * equations, to leading order otherwise. GM_EINVAL (n odd or < 2, dim out of range, NULL),
+ * GM_EDOMAIN (non-finite data), GM_ENOMEM. */
+gm_status gm_pde_gauss_project(const gm_pde_grid *grid, size_t dim, double *s, gm_error *err);
+
 /* Plan a run. s0: the initial state, n·d values, point i at s0[i·d .. i·d+d−1] (copied).
  * The scalar schemes read u = s[0] and u_t = s[1] and start with the Taylor step
  * u¹ = u⁰ + Δt u_t + ½Δt²(δ_x²u⁰ − V'(u⁰)).

@@ -14,7 +14,12 @@
  * Y_{m+1,i} = Y_{m,i} + √3 (Z_i2 − Z_i1).
  * Discrete multisymplectic law per cell (Reich 2000 Thm. 1: b_i a_ij + b_j a_ji = b_i b_j):
  *   H Σ_j b_j (ω_jⁿ⁺¹ − ω_jⁿ) + Δt Σ_i b_i (κ_{m+1,i} − κ_{m,i}) = 0,
- *   ω = dz∧𝕎dz at the spatial stages, κ = dY∧𝕂dY at the nodes. */
+ *   ω = dz∧𝕎dz at the spatial stages, κ = dY∧𝕂dY at the nodes.
+ * Accuracy (derived from the scheme's Fourier modes, docs/pde.md "The discrete dispersion
+ * relation of gauss-prk", checked against this code to 1e-13): order 4 in t and x for the
+ * cell means ½(z_{2m} + z_{2m+1}); order 3 in x at the Gauss points (stage values). Each
+ * wavenumber also has a spurious spatial root (μH ≈ −12i/(κH)); point-sampled data put O(H³)
+ * on it, and Δt does not resolve its frequency, so fixed-grid Δt-differences stall there. */
 #include <math.h>
 #include <string.h>
 
