@@ -187,6 +187,14 @@ int yee_tfsf_push_corr(yee_tfsf_corr *c, size_t *cap, int comp, size_t target, s
                        double coef);
 int yee_tfsf_in_box(const gm_yee *s, const size_t lo[3], const size_t hi[3], int c,
                     const long ijk[3]);
+/* One term of the Yee curl update of component c at ijk: coef × (component comp at the index
+   shifted by shift along axis). */
+typedef struct yee_curl_term {
+  int comp, axis;
+  long shift;
+  double coef;
+} yee_curl_term;
+void yee_curl_terms(const gm_yee *s, int c, const long ijk[3], yee_curl_term terms[4]);
 int yee_locate(const gm_yee *s, int c, const double x[3], long ijk[3]);
 double yee_medium_cb_e(const gm_yee *s, int c, size_t index);
 double yee_medium_cb_h(const gm_yee *s, int c, size_t index);

@@ -95,12 +95,6 @@ static double matched_spacing(double k, double S) {
   return 0.5 * (lo + hi);
 }
 
-typedef struct curl_term {
-  int comp, axis;
-  long shift;
-  double coef;
-} curl_term;
-
 gm_status gm_yee_add_oblique_wave(gm_yee *s, const gm_oblique_wave *w, size_t *id) {
   if (s == NULL || w == NULL) return GM_EINVAL;
   char *msg = s->errmsg;
@@ -227,7 +221,6 @@ gm_status gm_yee_add_oblique_wave(gm_yee *s, const gm_oblique_wave *w, size_t *i
   for (int c = 0; c < GM_YEE_N_COMPONENTS; ++c) {
     if (!s->active[c]) continue;
     const yee_box *bx = &s->upd[c];
-    const int A = c % 3, B = (A + 1) % 3, C = (A + 2) % 3;
     const int ise = yee_is_e(c);
     for (long k = (long)bx->lo[2]; k < (long)(bx->lo[2] + bx->cnt[2]); ++k)
       for (long j = (long)bx->lo[1]; j < (long)(bx->lo[1] + bx->cnt[1]); ++j)
@@ -239,23 +232,8 @@ gm_status gm_yee_add_oblique_wave(gm_yee *s, const gm_oblique_wave *w, size_t *i
           if (!near) continue;
           const int tf = yee_tfsf_in_box(s, w->lo, w->hi, c, ijk);
           const size_t q = yee_idx(&s->L, i, j, k);
-          const double cb = ise ? yee_medium_cb_e(s, c, q) : yee_medium_cb_h(s, c, q);
-          const double ib = ise ? s->inv_e[B][ijk[B] + (long)s->L.offset[B]]
-                                : s->inv_h[B][ijk[B] + (long)s->L.offset[B]];
-          const double ic = ise ? s->inv_e[C][ijk[C] + (long)s->L.offset[C]]
-                                : s->inv_h[C][ijk[C] + (long)s->L.offset[C]];
-          curl_term terms[4];
-          if (ise) { /* E += cb [(H_C[q] − H_C[q−s_B]) ib − (H_B[q] − H_B[q−s_C]) ic] */
-            terms[0] = (curl_term){3 + C, B, 0, cb * ib};
-            terms[1] = (curl_term){3 + C, B, -1, -cb * ib};
-            terms[2] = (curl_term){3 + B, C, 0, -cb * ic};
-            terms[3] = (curl_term){3 + B, C, -1, cb * ic};
-          } else { /* H −= cb [(E_C[q+s_B] − E_C[q]) ib − (E_B[q+s_C] − E_B[q]) ic] */
-            terms[0] = (curl_term){C, B, 1, -cb * ib};
-            terms[1] = (curl_term){C, B, 0, cb * ib};
-            terms[2] = (curl_term){B, C, 1, cb * ic};
-            terms[3] = (curl_term){B, C, 0, -cb * ic};
-          }
+          yee_curl_term terms[4];
+          yee_curl_terms(s, c, ijk, terms);
           for (int m = 0; m < 4; ++m) {
             const int nc = terms[m].comp;
             const double pol = nc < 3 ? eh[nc] : hh[nc - 3];
