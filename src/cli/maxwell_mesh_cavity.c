@@ -133,6 +133,8 @@ int cli_maxwell_mesh_cavity(int argc, char **argv) {
   run.f_min = 0.5 * ana[0];
   run.f_max = f_hi;
   run.band = 0.2;
+  run.n_sources = 12;
+  run.n_probes = 8;
   printf("PEC %s cavity, Whitney-star leapfrog (0.9 of the CFL limit), %zu sources, %zu probe "
          "points x 3 components, t = %g,\nharminv in bands of %.2g over [%.3f, %.3f] (error < "
          "%.0e, amplitude >= %.0e of the largest), leapfrog dispersion undone\n",

@@ -1,13 +1,16 @@
 /* The 3-D PEC cavity verification of issue 11 ("Invariants and verification"): the analytic
- * resonances (box multiplicities, cylinder Bessel zeros), and the Whitney-star leapfrog on
- * body-centred cubic tetrahedra of the box [0,1]×[0,0.75]×[0,0.5] (boundary pyramids filled,
- * so the mesh is the box; 4, 8, 12 cubes along x: a self-similar family) rung down by
- * gm_mesh_maxwell_cavity_modes: every harminv peak below the 10th resonance is an analytic one
- * (within 5 %, and no more peaks than analytic modes), and the resonances converge at rate
- * > 1.8 in h (least squares over the three levels): the median over those found on every
- * level, and each isolated simple one. The larger run (the box
- * [0,1]×[0,0.8]×[0,0.6] at 5, 10, 15 cubes, and the Gmsh cylinder) is
- * `geomint maxwell mesh-cavity` (docs/maxwell-mesh.md). */
+ * resonances (box multiplicities, cylinder Bessel zeros), and the Whitney-star leapfrog rung
+ * down by gm_mesh_maxwell_cavity_modes (current pulses on random edges, E at random points,
+ * harminv, the leapfrog's dispersion undone) at three resolutions of
+ *   - the box [0,1]×[0,0.75]×[0,0.5]: body-centred cubic tetrahedra with the boundary pyramids
+ *     filled (so the mesh is the box), 4, 8, 12 cubes along x (a self-similar family);
+ *   - the cylinder r = 0.5, height 0.6: the Gmsh meshes examples/cavity_cylinder_{1,2,3}.msh
+ *     (scripts/cavity_cylinder_mesh.sh; sizes 0.14, 0.1, 0.07).
+ * Asserted: every harminv peak below the 10th resonance lies within 5 % of an analytic one and
+ * there are no more peaks than analytic modes (with multiplicity) in the band; the rates in h
+ * (least squares over the three levels) exceed 1.8 as the median over the resonances found on
+ * every level and for each isolated simple one. The larger run (the box [0,1]×[0,0.8]×[0,0.6]
+ * at 5, 10, 15 cubes) is `geomint maxwell mesh-cavity` (docs/maxwell-mesh.md). */
 #include "../mesh_maxwell_util.h"
 
 #define PI 3.14159265358979323846
@@ -70,13 +73,12 @@ Test(mesh_maxwell_cavity3d, leapfrog_dispersion_undone) {
 #define LEVELS 3
 #define MAXM 128
 
-Test(mesh_maxwell_cavity3d, box_bcc_whitney, .timeout = 240) {
-  const double L[3] = {1.0, 0.75, 0.5};
-  const size_t nx[LEVELS] = {4, 8, 12};
-  double ana[MAXM];
-  size_t na = 0;
+typedef void (*level_fn)(size_t level, mm_fixture *f, double *h);
+
+/* The study over LEVELS meshes against the analytic list ana (na values, ascending). */
+static void study(const char *name, level_fn make, const double *ana, size_t na) {
   gm_error err = {{0}};
-  cr_assert_eq(gm_cavity_box_resonances(L, 2.5, MAXM, ana, &na, &err), GM_OK, "%s", err.message);
+  double hs[LEVELS];
   size_t next = 10;
   while (ana[next] <= ana[9] * (1 + 1e-12)) ++next;
   const double f_hi = 0.5 * (ana[9] + ana[next]);
@@ -95,13 +97,12 @@ Test(mesh_maxwell_cavity3d, box_bcc_whitney, .timeout = 240) {
   run.f_min = 0.5 * ana[0];
   run.f_max = f_hi;
   run.band = 0.2;
+  run.n_sources = 12;
+  run.n_probes = 8;
   double errs[10][LEVELS];
   for (size_t l = 0; l < LEVELS; ++l) {
     mm_fixture f = {0};
-    const double lo[3] = {0, 0, 0};
-    cr_assert_eq(gm_mesh_bcc(lo, L, nx[l], nx[l] * 3 / 4, nx[l] / 2, 1, &f.mesh, &err), GM_OK,
-                 "%s", err.message);
-    mm_fixture_finish(&f);
+    make(l, &f, &hs[l]);
     gm_mesh_maxwell_options o = gm_mesh_maxwell_defaults();
     o.star = GM_MESH_STAR_WHITNEY;
     gm_harminv_mode modes[MAXM];
@@ -111,9 +112,9 @@ Test(mesh_maxwell_cavity3d, box_bcc_whitney, .timeout = 240) {
                  "%s", err.message);
     mm_fixture_free(&f);
     for (size_t j = 0; j < nu; ++j) errs[j][l] = NAN;
-    fprintf(stderr, "mesh_maxwell_cavity3d box nx = %zu: %zu peaks (%zu analytic in band):", nx[l],
-            nm, in_band);
-    cr_expect_leq(nm, in_band, "more peaks than analytic modes at nx = %zu", nx[l]);
+    fprintf(stderr, "mesh_maxwell_cavity3d %s h = %.4f: %zu peaks (%zu analytic in band):", name,
+            hs[l], nm, in_band);
+    cr_expect_leq(nm, in_band, "%s: more peaks than analytic modes at h = %g", name, hs[l]);
     for (size_t i = 0; i < nm; ++i) {
       const double fs = gm_leapfrog_space_frequency(modes[i].frequency, dt);
       size_t best = 0;
@@ -121,8 +122,8 @@ Test(mesh_maxwell_cavity3d, box_bcc_whitney, .timeout = 240) {
         if (fabs(ana[j] - fs) < fabs(ana[best] - fs)) best = j;
       const double rel = (fs - ana[best]) / ana[best];
       fprintf(stderr, " %.5f(%+.1e)", fs, rel);
-      cr_expect_lt(fabs(rel), 0.05, "spurious peak %.5f at nx = %zu (nearest analytic %.5f)", fs,
-                   nx[l], ana[best]);
+      cr_expect_lt(fabs(rel), 0.05, "%s: spurious peak %.5f at h = %g (nearest analytic %.5f)",
+                   name, fs, hs[l], ana[best]);
       for (size_t j = 0; j < nu; ++j)
         if (ana[best] == uniq[j] && !(fabs(errs[j][l]) <= fabs(rel))) errs[j][l] = rel;
     }
@@ -139,12 +140,12 @@ Test(mesh_maxwell_cavity3d, box_bcc_whitney, .timeout = 240) {
     size_t m = 0;
     for (size_t l = 0; l < LEVELS; ++l) {
       if (isnan(errs[j][l])) continue;
-      const double x = -log((double)nx[l]), y = log(fabs(errs[j][l]));
+      const double x = log(hs[l]), y = log(fabs(errs[j][l]));
       sx += x, sy += y, sxx += x * x, sxy += x * y, ++m;
     }
     if (m < LEVELS) {
-      fprintf(stderr, "mesh_maxwell_cavity3d box f = %.5f (x%d): not found at every level\n",
-              uniq[j], mult[j]);
+      fprintf(stderr, "mesh_maxwell_cavity3d %s f = %.5f (x%d): not found at every level\n",
+              name, uniq[j], mult[j]);
       continue;
     }
     const double rate = (m * sxy - sx * sy) / (m * sxx - sx * sx);
@@ -152,16 +153,16 @@ Test(mesh_maxwell_cavity3d, box_bcc_whitney, .timeout = 240) {
     int alone = mult[j] == 1;
     for (size_t k = 0; k < na; ++k)
       if (ana[k] != uniq[j] && fabs(ana[k] - uniq[j]) < 0.03 * uniq[j]) alone = 0;
-    fprintf(stderr, "mesh_maxwell_cavity3d box f = %.5f (x%d%s): errors %+.2e %+.2e %+.2e, rate "
-            "%.2f\n", uniq[j], mult[j], alone ? ", isolated" : "", errs[j][0], errs[j][1],
+    fprintf(stderr, "mesh_maxwell_cavity3d %s f = %.5f (x%d%s): errors %+.2e %+.2e %+.2e, rate "
+            "%.2f\n", name, uniq[j], mult[j], alone ? ", isolated" : "", errs[j][0], errs[j][1],
             errs[j][2], rate);
     if (alone) {
       ++isolated;
-      cr_expect_gt(rate, 1.8, "f = %.5f: rate %.2f", uniq[j], rate);
+      cr_expect_gt(rate, 1.8, "%s f = %.5f: rate %.2f", name, uniq[j], rate);
     }
   }
-  cr_assert_geq(tracked, 4, "only %zu resonances found on every level", tracked);
-  cr_expect_geq(isolated, 1);
+  cr_assert_geq(tracked, 4, "%s: only %zu resonances found on every level", name, tracked);
+  cr_expect_geq(isolated, 1, "%s: no isolated simple resonance tracked", name);
   for (size_t i = 1; i < tracked; ++i) /* insertion sort */
     for (size_t k = i; k > 0 && rates[k] < rates[k - 1]; --k) {
       const double t = rates[k];
@@ -170,7 +171,49 @@ Test(mesh_maxwell_cavity3d, box_bcc_whitney, .timeout = 240) {
     }
   const double median = tracked % 2 ? rates[tracked / 2]
                                     : 0.5 * (rates[tracked / 2 - 1] + rates[tracked / 2]);
-  fprintf(stderr, "mesh_maxwell_cavity3d box: median rate %.2f over %zu resonances\n", median,
-          tracked);
-  cr_expect_gt(median, 1.8, "median rate %.2f", median);
+  fprintf(stderr, "mesh_maxwell_cavity3d %s: median rate %.2f over %zu resonances\n", name,
+          median, tracked);
+  cr_expect_gt(median, 1.8, "%s: median rate %.2f", name, median);
+}
+
+static void box_level(size_t level, mm_fixture *f, double *h) {
+  const double lo[3] = {0, 0, 0}, hi[3] = {1.0, 0.75, 0.5};
+  const size_t n = 4 * (level + 1);
+  gm_error err = {{0}};
+  cr_assert_eq(gm_mesh_bcc(lo, hi, n, n * 3 / 4, n / 2, 1, &f->mesh, &err), GM_OK, "%s",
+               err.message);
+  mm_fixture_finish(f);
+  *h = 1.0 / (double)n;
+}
+
+Test(mesh_maxwell_cavity3d, box_bcc_whitney, .timeout = 240) {
+  const double L[3] = {1.0, 0.75, 0.5};
+  double ana[MAXM];
+  size_t na = 0;
+  gm_error err = {{0}};
+  cr_assert_eq(gm_cavity_box_resonances(L, 2.5, MAXM, ana, &na, &err), GM_OK, "%s", err.message);
+  study("box", box_level, ana, na);
+}
+
+/* h: the mean edge length of the Gmsh mesh (sizes 0.14, 0.1, 0.07 asked of Gmsh). */
+static void cylinder_level(size_t level, mm_fixture *f, double *h) {
+  char path[512];
+  snprintf(path, sizeof path, "%s/examples/cavity_cylinder_%zu.msh", GM_SOURCE_DIR, level + 1);
+  gm_error err = {{0}};
+  cr_assert_eq(gm_mesh_read(path, &f->mesh, &err), GM_OK, "%s", err.message);
+  mm_fixture_finish(f);
+  const size_t ne = gm_complex_count(f->cx, 1);
+  const double *len = gm_geometry_primal_volumes(f->g, 1);
+  double s = 0.0;
+  for (size_t e = 0; e < ne; ++e) s += len[e];
+  *h = s / (double)ne;
+}
+
+Test(mesh_maxwell_cavity3d, cylinder_gmsh_whitney, .timeout = 240) {
+  double ana[MAXM];
+  size_t na = 0;
+  gm_error err = {{0}};
+  cr_assert_eq(gm_cavity_cylinder_resonances(0.5, 0.6, 2.0, MAXM, ana, &na, &err), GM_OK, "%s",
+               err.message);
+  study("cylinder", cylinder_level, ana, na);
 }
