@@ -99,6 +99,9 @@ gm_status gm_cavity_cylinder_resonances(double R, double H, double f_max, size_t
   for (int m = 0; m <= (int)xmax + 1; ++m)
     for (int te = 0; te < 2; ++te) {
       const size_t nz = bessel_zeros(m, te, xmax, z, 64);
+      if (nz == 64)
+        return gm_error_set(err, GM_EINVAL, "cavity cylinder: f_max·R = %g is too large",
+                            f_max * R);
       for (size_t i = 0; i < nz; ++i)
         for (int p = te; p <= (int)(kmax * H / GM_PI) + 1; ++p) {
           const double kr = z[i] / R, kz = p * GM_PI / H;
@@ -178,7 +181,11 @@ gm_status gm_mesh_maxwell_cavity_modes(const gm_geometry *g,
   }
   size_t ni = 0;
   for (size_t e = 0; e < ne; ++e) ni += !bm[e];
-  for (size_t k = 0; k < run->n_sources && ni > 0; ++k) { /* the k-th random interior edge */
+  if (ni == 0) {
+    free(edges), free(w), free(sum), gm_mesh_maxwell_free(s);
+    return gm_error_set(err, GM_EINVAL, "mesh cavity: the mesh has no interior edge");
+  }
+  for (size_t k = 0; k < run->n_sources; ++k) { /* the k-th random interior edge */
     size_t pick = (size_t)(rnd(&z) * (double)ni), e = 0;
     for (;; ++e)
       if (!bm[e] && pick-- == 0) break;
@@ -194,6 +201,7 @@ gm_status gm_mesh_maxwell_cavity_modes(const gm_geometry *g,
   const gm_waveform wave = {GM_WAVE_GAUSSIAN, 1.0, 0.5 * (run->f_min + run->f_max), width,
                             6.0 * width, 0.0, NULL, NULL};
   st = gm_mesh_maxwell_add_current(s, run->n_sources, edges, w, &wave, NULL);
+  if (st != GM_OK) gm_error_set(err, st, "%s", gm_mesh_maxwell_errmsg(s));
   double pw[3 * 64];
   for (size_t p = 0; p < run->n_probes && st == GM_OK; ++p) { /* a random point in a random tet */
     const size_t t = (size_t)(rnd(&z) * (double)nt);
@@ -235,8 +243,8 @@ gm_status gm_mesh_maxwell_cavity_modes(const gm_geometry *g,
     /* Bands overlap by a fifth of their width on each side and keep only the modes in their
      * core, so a mode on a band edge (where harminv's filter is weakest) is not lost. */
     const double hi = fmin(lo + run->band, run->f_max), margin = 0.2 * run->band;
-    st = gm_harminv(n - skip, sum + skip, NULL, dt, fmax(0.0, lo - margin), fmin(hi + margin, 0.5 / dt), 0,
-                    128, buf, &nm, err);
+    st = gm_harminv(n - skip, sum + skip, NULL, dt, fmax(0.0, lo - margin),
+                    fmin(hi + margin, 0.5 / dt), 0, 128, buf, &nm, err);
     for (size_t i = 0; st == GM_OK && i < nm; ++i) {
       if (!(buf[i].error < run->max_error)) continue;
       if (buf[i].frequency < lo || buf[i].frequency >= hi) continue;
