@@ -641,8 +641,8 @@ gm_status gm_cavity_cylinder_resonances(double R, double H, double f_max, size_t
  * Gaussian current pulses on a carrier at (f_min + f_max)/2 (time width pulse_width; 0: the
  * spectral width (f_max − f_min)/2.5; delay 6 widths; the static field of the charge they
  * leave is removed as the signal's mean after 12 widths, where the record starts) on
- * n_sources pseudo-random interior edges with random weights ±[1, 2], E_x, E_y, E_z probed at
- * n_probes pseudo-random interior points and summed with random weights (so no mode sits at
+ * n_sources pseudo-random interior edges with random weights ±[1, 2], E_x, E_y, E_z (2-D TE
+ * on triangles in the plane: E_x, E_y, H_z) probed at n_probes pseudo-random interior points and summed with random weights (so no mode sits at
  * a node of the signal), run to t_end; harminv of the sum in bands of width `band` over
  * [f_min, f_max]; modes kept with harminv error < max_error and amplitude >= min_amplitude
  * times the largest. */
@@ -654,7 +654,8 @@ typedef struct gm_mesh_cavity_run {
   double max_error, min_amplitude;  /* defaults 1e-3, 0.01 */
 } gm_mesh_cavity_run;
 gm_mesh_cavity_run gm_mesh_cavity_run_defaults(void);
-/* The modes (at most cap, ascending) of the cavity g (tetrahedra, PEC walls, vacuum) under the
+/* The modes (at most cap, ascending) of the cavity g (tetrahedra, or triangles in the plane;
+ * PEC walls, vacuum) under the
  * solver options (borrowed); dt_out (may be NULL) gets the step. Allocates (a solver and the
  * signal). Errors: as gm_mesh_maxwell_create, bad run fields, f_max above Nyquist, more than
  * cap modes (GM_EINVAL). */

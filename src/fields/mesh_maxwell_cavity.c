@@ -149,7 +149,10 @@ gm_status gm_mesh_maxwell_cavity_modes(const gm_geometry *g,
     return gm_error_set(err, GM_EINVAL, "mesh cavity: NULL argument");
   const gm_complex *cx = gm_geometry_complex(g);
   const size_t dim = gm_complex_dim(cx);
-  if (dim != 3) return gm_error_set(err, GM_EINVAL, "mesh cavity: needs a tetrahedral mesh");
+  const size_t N = gm_complex_embedding_dim(cx);
+  if (dim < 2 || dim > 3 || N != dim)
+    return gm_error_set(err, GM_EINVAL,
+                        "mesh cavity: needs triangles in the plane or tetrahedra in space");
   if (!(run->t_end > 0) || !(run->f_min >= 0) || !(run->f_max > run->f_min) ||
       !(run->band > 0) || run->n_sources == 0 || run->n_probes == 0 || run->n_probes > 64 ||
       !(run->pulse_width >= 0))
@@ -166,9 +169,9 @@ gm_status gm_mesh_maxwell_cavity_modes(const gm_geometry *g,
     return gm_error_set(err, GM_EINVAL, "mesh cavity: f_max %g above the Nyquist limit %g",
                         run->f_max, 0.5 / dt);
   }
-  const size_t ne = gm_complex_count(cx, 1), nt = gm_complex_count(cx, 3);
+  const size_t ne = gm_complex_count(cx, 1), nt = gm_complex_count(cx, dim);
   const unsigned char *bm = gm_complex_boundary_mask(cx, 1);
-  const size_t *tv = gm_complex_simplices(cx, 3);
+  const size_t *tv = gm_complex_simplices(cx, dim);
   const double *X = gm_complex_coordinates(cx);
   uint64_t z = run->seed;
   const size_t steps = (size_t)ceil(run->t_end / dt);
@@ -203,15 +206,17 @@ gm_status gm_mesh_maxwell_cavity_modes(const gm_geometry *g,
   st = gm_mesh_maxwell_add_current(s, run->n_sources, edges, w, &wave, NULL);
   if (st != GM_OK) gm_error_set(err, st, "%s", gm_mesh_maxwell_errmsg(s));
   double pw[3 * 64];
-  for (size_t p = 0; p < run->n_probes && st == GM_OK; ++p) { /* a random point in a random tet */
+  /* 3-D: E_x, E_y, E_z; 2-D (TE): E_x, E_y, H_z */
+  const gm_yee_component comp[2][3] = {{GM_EX, GM_EY, GM_HZ}, {GM_EX, GM_EY, GM_EZ}};
+  for (size_t p = 0; p < run->n_probes && st == GM_OK; ++p) { /* a random point in a random cell */
     const size_t t = (size_t)(rnd(&z) * (double)nt);
     double b[4], bs = 0.0, x[3] = {0, 0, 0};
-    for (int i = 0; i < 4; ++i) bs += (b[i] = 0.2 + rnd(&z));
-    for (int i = 0; i < 4; ++i)
-      for (int c = 0; c < 3; ++c) x[c] += b[i] / bs * X[3 * tv[4 * t + i] + c];
+    for (size_t i = 0; i <= dim; ++i) bs += (b[i] = 0.2 + rnd(&z));
+    for (size_t i = 0; i <= dim; ++i)
+      for (size_t c = 0; c < dim; ++c) x[c] += b[i] / bs * X[dim * tv[(dim + 1) * t + i] + c];
     for (int c = 0; c < 3 && st == GM_OK; ++c) {
       pw[3 * p + c] = rnd(&z) - 0.5;
-      st = gm_mesh_maxwell_add_probe(s, (gm_yee_component)(GM_EX + c), x, steps, NULL);
+      st = gm_mesh_maxwell_add_probe(s, comp[dim - 2][c], x, steps, NULL);
       if (st != GM_OK) gm_error_set(err, st, "%s", gm_mesh_maxwell_errmsg(s));
     }
   }

@@ -5,11 +5,12 @@
  *   - the box [0,1]×[0,0.75]×[0,0.5]: body-centred cubic tetrahedra with the boundary pyramids
  *     filled (so the mesh is the box), 4, 8, 12 cubes along x (a self-similar family);
  *   - the cylinder r = 0.5, height 0.6: the Gmsh meshes examples/cavity_cylinder_{1,2,3}.msh
- *     (scripts/cavity_cylinder_mesh.sh; sizes 0.14, 0.1, 0.07).
+ *     (scripts/cavity_cylinder_mesh.sh; sizes 0.14, 0.1, 0.07);
+ *   - and in 2-D (TE) the rectangle [0,1]×[0,0.7] on self-similar acute meshes (diagonal star).
  * Asserted: every harminv peak below the 10th resonance lies within 5 % of an analytic one and
  * there are no more peaks than analytic modes (with multiplicity) in the band; the rates in h
  * (least squares over the three levels) exceed 1.8 as the median over the resonances found on
- * every level and for each isolated simple one. The larger run (the box [0,1]×[0,0.8]×[0,0.6]
+ * every level and for each isolated simple one (2-D: 1.75, see there). The larger run (the box [0,1]×[0,0.8]×[0,0.6]
  * at 5, 10, 15 cubes) is `geomint maxwell mesh-cavity` (docs/maxwell-mesh.md). */
 #include "../mesh_maxwell_util.h"
 
@@ -76,7 +77,8 @@ Test(mesh_maxwell_cavity3d, leapfrog_dispersion_undone) {
 typedef void (*level_fn)(size_t level, mm_fixture *f, double *h);
 
 /* The study over LEVELS meshes against the analytic list ana (na values, ascending). */
-static void study(const char *name, level_fn make, const double *ana, size_t na) {
+static void study(const char *name, level_fn make, const double *ana, size_t na, double t_end,
+                  double min_rate) {
   gm_error err = {{0}};
   double hs[LEVELS];
   size_t next = 10;
@@ -93,7 +95,7 @@ static void study(const char *name, level_fn make, const double *ana, size_t na)
   size_t in_band = 0;
   for (size_t j = 0; j < na; ++j) in_band += ana[j] >= 0.5 * ana[0] && ana[j] <= f_hi;
   gm_mesh_cavity_run run = gm_mesh_cavity_run_defaults();
-  run.t_end = 150.0;
+  run.t_end = t_end;
   run.f_min = 0.5 * ana[0];
   run.f_max = f_hi;
   run.band = 0.2;
@@ -104,7 +106,7 @@ static void study(const char *name, level_fn make, const double *ana, size_t na)
     mm_fixture f = {0};
     make(l, &f, &hs[l]);
     gm_mesh_maxwell_options o = gm_mesh_maxwell_defaults();
-    o.star = GM_MESH_STAR_WHITNEY;
+    if (gm_complex_dim(f.cx) == 3) o.star = GM_MESH_STAR_WHITNEY; /* 2-D: acute, diagonal */
     gm_harminv_mode modes[MAXM];
     size_t nm = 0;
     double dt = 0.0;
@@ -158,7 +160,7 @@ static void study(const char *name, level_fn make, const double *ana, size_t na)
             errs[j][2], rate);
     if (alone) {
       ++isolated;
-      cr_expect_gt(rate, 1.8, "%s f = %.5f: rate %.2f", name, uniq[j], rate);
+      cr_expect_gt(rate, min_rate, "%s f = %.5f: rate %.2f", name, uniq[j], rate);
     }
   }
   cr_assert_geq(tracked, 4, "%s: only %zu resonances found on every level", name, tracked);
@@ -192,7 +194,7 @@ Test(mesh_maxwell_cavity3d, box_bcc_whitney, .timeout = 240) {
   size_t na = 0;
   gm_error err = {{0}};
   cr_assert_eq(gm_cavity_box_resonances(L, 2.5, MAXM, ana, &na, &err), GM_OK, "%s", err.message);
-  study("box", box_level, ana, na);
+  study("box", box_level, ana, na, 150.0, 1.8);
 }
 
 /* h: the mean edge length of the Gmsh mesh (sizes 0.14, 0.1, 0.07 asked of Gmsh). */
@@ -215,5 +217,35 @@ Test(mesh_maxwell_cavity3d, cylinder_gmsh_whitney, .timeout = 240) {
   gm_error err = {{0}};
   cr_assert_eq(gm_cavity_cylinder_resonances(0.5, 0.6, 2.0, MAXM, ana, &na, &err), GM_OK, "%s",
                err.message);
-  study("cylinder", cylinder_level, ana, na);
+  study("cylinder", cylinder_level, ana, na, 150.0, 1.8);
+}
+
+/* 2-D TE (B_z on triangles) in [0,1]×[0,0.7], acute meshes (well-centred: diagonal star) of
+ * 10, 20, 40 columns and 8, 16, 32 rows (self-similar); f = ½√(m² + (n/0.7)²), (m,n) ≠ 0. */
+static void rect_level(size_t level, mm_fixture *f, double *h) {
+  const size_t n = 10u << level;
+  *f = mm_rect(n, 0.7, 0.0, 1);
+  *h = 1.0 / (double)n;
+}
+
+Test(mesh_maxwell_cavity3d, rect_2d_acute, .timeout = 120) {
+  double ana[MAXM];
+  size_t na = 0;
+  for (int m = 0; m < 8; ++m)
+    for (int n = 0; n < 8; ++n) {
+      if (m == 0 && n == 0) continue;
+      const double fm = 0.5 * sqrt(m * m + n * n / 0.49);
+      if (fm < 2.5) ana[na++] = fm;
+    }
+  for (size_t i = 1; i < na; ++i)
+    for (size_t k = i; k > 0 && ana[k] < ana[k - 1]; --k) {
+      const double t = ana[k];
+      ana[k] = ana[k - 1];
+      ana[k - 1] = t;
+    }
+  /* t = 400 (cheap in 2-D: a longer record, sharper peaks). The (2,0) resonance approaches
+   * second order from below (pairwise rates 1.74, 1.84 at 10-20-40 columns; 1.93 at 20-40-80
+   * columns, where the lowest two hit a floor of ~5e-5), so isolated resonances are held to
+   * 1.75 here and the median to 1.8. */
+  study("rect-2d", rect_level, ana, na, 400.0, 1.75);
 }
