@@ -10,8 +10,9 @@
  * Asserted: every harminv peak below the 10th resonance lies within 5 % of an analytic one and
  * there are no more peaks than analytic modes (with multiplicity) in the band; the rates in h
  * (least squares over the three levels) exceed 1.8 as the median over the resonances found on
- * every level and for each isolated simple one (2-D: 1.75, see there). The larger run (the box [0,1]×[0,0.8]×[0,0.6]
- * at 5, 10, 15 cubes) is `geomint maxwell mesh-cavity` (docs/maxwell-mesh.md). */
+ * every level and for each isolated simple one (2-D: 1.75, see there). The larger run (the
+ * box [0,1]×[0,0.8]×[0,0.6] at 5, 10, 15 cubes) is `geomint maxwell mesh-cavity`
+ * (docs/maxwell-mesh.md). */
 #include "../mesh_maxwell_util.h"
 
 #define PI 3.14159265358979323846
