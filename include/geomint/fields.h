@@ -19,6 +19,7 @@
 #define GEOMINT_FIELDS_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "geomint/core.h"
 #include "geomint/dec.h"
@@ -622,6 +623,50 @@ typedef struct gm_harminv_mode {
 gm_status gm_harminv(size_t n, const double *re, const double *im, double dt, double f_min,
                      double f_max, size_t n_basis, size_t max_modes, gm_harminv_mode *modes,
                      size_t *n_modes, gm_error *err);
+
+/* ---- PEC cavity resonances on a mesh (verification; docs/maxwell-mesh.md) ----------------- */
+
+/* Analytic resonances (ε = μ = c = 1), ascending, each listed once per polarisation, up to
+ * f_max. Box a×b×c: f = ½ √((l/a)² + (m/b)² + (n/c)²), two polarisations (TE and TM) when
+ * l, m, n >= 1, one when exactly one is 0, none when two are. Cylinder radius R, height H:
+ * TM_mnp f = √((j_mn/R)² + (pπ/H)²)/2π (p >= 0) and TE_mnp with j'_mn (p >= 1), two
+ * polarisations for m >= 1; Bessel zeros by bisection on jn() from <math.h>. Errors (GM_EINVAL):
+ * non-positive sizes or f_max, more than cap resonances (the message gives the count). */
+gm_status gm_cavity_box_resonances(const double L[3], double f_max, size_t cap, double *f,
+                                   size_t *n, gm_error *err);
+gm_status gm_cavity_cylinder_resonances(double R, double H, double f_max, size_t cap, double *f,
+                                        size_t *n, gm_error *err);
+
+/* A ring-down measurement of a PEC cavity: the leapfrog on the mesh, excited by
+ * Gaussian current pulses on a carrier at (f_min + f_max)/2 (time width pulse_width; 0: the
+ * spectral width (f_max − f_min)/2.5; delay 6 widths; the static field of the charge they
+ * leave is removed as the signal's mean after 12 widths, where the record starts) on
+ * n_sources pseudo-random interior edges with random weights ±[1, 2], E_x, E_y, E_z (2-D TE
+ * on triangles in the plane: E_x, E_y, H_z) probed at n_probes pseudo-random interior points and summed with random weights (so no mode sits at
+ * a node of the signal), run to t_end; harminv of the sum in bands of width `band` over
+ * [f_min, f_max]; modes kept with harminv error < max_error and amplitude >= min_amplitude
+ * times the largest. */
+typedef struct gm_mesh_cavity_run {
+  double t_end, f_min, f_max, band; /* defaults 60, 0.3, 2, 0.5 */
+  size_t n_sources, n_probes;       /* defaults 6, 4 (probes <= 64) */
+  uint64_t seed;                    /* default 11 */
+  double pulse_width;               /* default 0 (from the band) */
+  double max_error, min_amplitude;  /* defaults 1e-3, 0.01 */
+} gm_mesh_cavity_run;
+gm_mesh_cavity_run gm_mesh_cavity_run_defaults(void);
+/* The modes (at most cap, ascending) of the cavity g (tetrahedra, or triangles in the plane;
+ * PEC walls, vacuum) under the
+ * solver options (borrowed); dt_out (may be NULL) gets the step. Allocates (a solver and the
+ * signal). Errors: as gm_mesh_maxwell_create, bad run fields, f_max above Nyquist, more than
+ * cap modes (GM_EINVAL). */
+gm_status gm_mesh_maxwell_cavity_modes(const gm_geometry *g,
+                                       const gm_mesh_maxwell_options *options,
+                                       const gm_mesh_cavity_run *run, size_t cap,
+                                       gm_harminv_mode *modes, size_t *n_modes, double *dt_out,
+                                       gm_error *err);
+/* The spatial eigenfrequency behind a leapfrog frequency f at step dt (the leapfrog's dispersion
+ * sin(ωΔt/2) = (Δt/2)√λ undone): sin(π f Δt)/(π Δt). */
+double gm_leapfrog_space_frequency(double f, double dt);
 
 #ifdef __cplusplus
 }

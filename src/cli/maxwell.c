@@ -14,7 +14,8 @@ static const char usage[] =
     "                           [--plot FILE.png [--plot-field C]]\n"
     "       geomint maxwell cavity [--dim 2|3] [--n N] [--periods P] [--out DIR] [--json]\n"
     "       geomint maxwell e4 [--n N] [--time T] [--seed S] [--out DIR] [--json]\n"
-    "       geomint maxwell mesh FILE.msh | --rect NX [--avi] ... (see 'maxwell mesh --help')\n\n"
+    "       geomint maxwell mesh FILE.msh | --rect NX [--avi] ... (see 'maxwell mesh --help')\n"
+    "       geomint maxwell mesh-cavity [--shape box|cylinder] [--levels K] ...\n\n"
     "Maxwell's equations on a Cartesian grid with the Yee scheme (E on primal edges at half\n"
     "steps, H on primal faces at whole steps; seed 000 section 3.4.1). See docs/maxwell.md.\n\n"
     "  run     run the scene file: grid, materials, boundaries (pec, pmc, periodic, cpml),\n"
@@ -29,7 +30,9 @@ static const char usage[] =
     "          square (2-D TE, N x N cells), steps of 1/10 of the Courant limit for T = 8;\n"
     "          prints the energy's bounded oscillation and writes e4-energy.png\n"
     "  mesh    PEC cavity on a triangle or tetrahedron mesh: DEC leapfrog or the AVI\n"
-    "          (docs/maxwell-mesh.md)\n\n"
+    "          (docs/maxwell-mesh.md)\n"
+    "  mesh-cavity  PEC box or cylinder on tetrahedra at K resolutions: harminv resonances\n"
+    "          against the analytic ones, rates, spurious peaks (see 'mesh-cavity --help')\n\n"
     "options:\n"
     "  --out DIR     output directory (created if missing)\n"
     "  --json        print one JSON object instead of the text summary\n"
@@ -59,7 +62,8 @@ static int maxwell_main(int argc, char **argv) {
   if (strcmp(argv[0], "cavity") == 0) return mx_cavity_main(argc - 1, argv + 1);
   if (strcmp(argv[0], "e4") == 0) return mx_e4_main(argc - 1, argv + 1);
   if (strcmp(argv[0], "mesh") == 0) return cli_maxwell_mesh(argc - 1, argv + 1);
-  cli_error("maxwell", "unknown subcommand '%s' (run, cavity, e4, mesh); see 'geomint maxwell --help'",
+  if (strcmp(argv[0], "mesh-cavity") == 0) return cli_maxwell_mesh_cavity(argc - 1, argv + 1);
+  cli_error("maxwell", "unknown subcommand '%s' (run, cavity, e4, mesh, mesh-cavity); see 'geomint maxwell --help'",
             argv[0]);
   return CLI_EXIT_USAGE;
 }

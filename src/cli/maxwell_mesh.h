@@ -12,4 +12,7 @@ int cli_maxwell_mesh(int argc, char **argv);
 int cli_maxwell_mesh_e5(const gm_mesh *mesh, const char *out_dir, double t_end, uint64_t seed,
                         double f_max, double fraction);
 
+/* geomint maxwell mesh-cavity (maxwell_mesh_cavity.c): the PEC cavity convergence table. */
+int cli_maxwell_mesh_cavity(int argc, char **argv);
+
 #endif
