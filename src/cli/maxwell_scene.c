@@ -339,7 +339,77 @@ static int parse_medium(parser *p, const cJSON *obj, gm_medium *m) {
   return 0;
 }
 
+/* Calls one(p, item, i, s) for each element i of the array list, with the JSON path
+   "key[i]" pushed so that errors name it; an element that is not an object is an error. Stops
+   at the first failure. */
+typedef int (*element_fn)(parser *p, const cJSON *item, size_t i, mx_scene *s);
+static int for_each_object(parser *p, const cJSON *list, const char *key, element_fn one,
+                           mx_scene *s) {
+  size_t old = push_key(p, key);
+  size_t i = 0;
+  const cJSON *item;
+  int rc = 0;
+  cJSON_ArrayForEach(item, list) {
+    size_t o = push_index(p, i);
+    rc = cJSON_IsObject(item) ? one(p, item, i, s)
+                              : fail(p, "expected an object, got %s", type_name(item));
+    pop(p, o);
+    ++i;
+    if (rc != 0) break;
+  }
+  pop(p, old);
+  return rc;
+}
+
 static int lib_fail(parser *p, const char *what) { return fail(p, "%s", what); }
+
+/* One element of "materials": a shape painted with a medium. */
+static int parse_material(parser *p, const cJSON *item, size_t i, mx_scene *s) {
+  (void)i;
+  const size_t axes = gm_yee_dim_axes(s->grid.dim);
+  const char *shape = NULL;
+  gm_medium m = gm_medium_vacuum();
+  int rc = get_string(p, item, "shape", 1, &shape) != 0 ? -1 : 0;
+  if (rc == 0 && parse_medium(p, item, &m) != 0) rc = -1;
+  gm_status st = GM_OK;
+  if (rc == 0 && strcmp(shape, "box") == 0) {
+    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "lo", "hi", NULL};
+    double lo[3], hi[3];
+    if (check_keys(p, item, keys) != 0 || get_vector(p, item, "lo", 1, axes, 3, 0, lo) != 0 ||
+        get_vector(p, item, "hi", 1, axes, 3, 0, hi) != 0)
+      rc = -1;
+    else
+      st = gm_yee_paint_box(s->materials, lo, hi, &m);
+  } else if (rc == 0 && strcmp(shape, "sphere") == 0) {
+    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "center", "radius",
+                                       NULL};
+    double c[3], r = 0;
+    if (check_keys(p, item, keys) != 0 ||
+        get_vector(p, item, "center", 1, axes, 3, 0, c) != 0 ||
+        get_number(p, item, "radius", 1, &r) != 0)
+      rc = -1;
+    else
+      st = gm_yee_paint_sphere(s->materials, c, r, &m);
+  } else if (rc == 0 && strcmp(shape, "cylinder") == 0) {
+    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "center", "axis",
+                                       "radius", "height", NULL};
+    double c[3], ax[3] = {0, 0, 1}, r = 0, height = INFINITY;
+    if (check_keys(p, item, keys) != 0 ||
+        get_vector(p, item, "center", 1, axes, 3, 0, c) != 0 ||
+        get_vector(p, item, "axis", 0, 3, 3, 0, ax) < 0 ||
+        get_number(p, item, "radius", 1, &r) != 0 ||
+        get_number(p, item, "height", 0, &height) < 0)
+      rc = -1;
+    else
+      st = gm_yee_paint_cylinder(s->materials, c, ax, r, height, &m);
+  } else if (rc == 0) {
+    size_t o2 = push_key(p, "shape");
+    rc = fail(p, "unknown shape \"%s\" (box, sphere, cylinder)", shape);
+    pop(p, o2);
+  }
+  if (rc == 0 && st != GM_OK) rc = lib_fail(p, gm_yee_materials_errmsg(s->materials));
+  return rc;
+}
 
 static int parse_materials(parser *p, const cJSON *root, mx_scene *s) {
   gm_error err = {{0}};
@@ -361,60 +431,7 @@ static int parse_materials(parser *p, const cJSON *root, mx_scene *s) {
   rc = get_array(p, root, "materials", &list);
   if (rc < 0) return -1;
   if (rc == 1) return 0;
-  size_t old = push_key(p, "materials");
-  size_t axes = gm_yee_dim_axes(s->grid.dim);
-  size_t i = 0;
-  const cJSON *item;
-  cJSON_ArrayForEach(item, list) {
-    size_t o = push_index(p, i++);
-    rc = 0;
-    const char *shape = NULL;
-    gm_medium m = gm_medium_vacuum();
-    if (!cJSON_IsObject(item)) rc = fail(p, "expected an object, got %s", type_name(item));
-    if (rc == 0) rc = get_string(p, item, "shape", 1, &shape) != 0 ? -1 : 0;
-    if (rc == 0 && parse_medium(p, item, &m) != 0) rc = -1;
-    gm_status st = GM_OK;
-    if (rc == 0 && strcmp(shape, "box") == 0) {
-      static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "lo", "hi", NULL};
-      double lo[3], hi[3];
-      if (check_keys(p, item, keys) != 0 || get_vector(p, item, "lo", 1, axes, 3, 0, lo) != 0 ||
-          get_vector(p, item, "hi", 1, axes, 3, 0, hi) != 0)
-        rc = -1;
-      else
-        st = gm_yee_paint_box(s->materials, lo, hi, &m);
-    } else if (rc == 0 && strcmp(shape, "sphere") == 0) {
-      static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "center", "radius",
-                                         NULL};
-      double c[3], r = 0;
-      if (check_keys(p, item, keys) != 0 ||
-          get_vector(p, item, "center", 1, axes, 3, 0, c) != 0 ||
-          get_number(p, item, "radius", 1, &r) != 0)
-        rc = -1;
-      else
-        st = gm_yee_paint_sphere(s->materials, c, r, &m);
-    } else if (rc == 0 && strcmp(shape, "cylinder") == 0) {
-      static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "center", "axis",
-                                         "radius", "height", NULL};
-      double c[3], ax[3] = {0, 0, 1}, r = 0, height = INFINITY;
-      if (check_keys(p, item, keys) != 0 ||
-          get_vector(p, item, "center", 1, axes, 3, 0, c) != 0 ||
-          get_vector(p, item, "axis", 0, 3, 3, 0, ax) < 0 ||
-          get_number(p, item, "radius", 1, &r) != 0 ||
-          get_number(p, item, "height", 0, &height) < 0)
-        rc = -1;
-      else
-        st = gm_yee_paint_cylinder(s->materials, c, ax, r, height, &m);
-    } else if (rc == 0) {
-      size_t o2 = push_key(p, "shape");
-      rc = fail(p, "unknown shape \"%s\" (box, sphere, cylinder)", shape);
-      pop(p, o2);
-    }
-    if (rc == 0 && st != GM_OK) rc = lib_fail(p, gm_yee_materials_errmsg(s->materials));
-    pop(p, o);
-    if (rc != 0) break;
-  }
-  pop(p, old);
-  return rc;
+  return for_each_object(p, list, "materials", parse_material, s);
 }
 
 static int parse_pml(parser *p, const cJSON *root, gm_cpml *pml) {
@@ -551,6 +568,77 @@ static int parse_oblique(parser *p, const cJSON *item, size_t axes, gm_oblique_w
   return 0;
 }
 
+/* One element of "sources": a point source or a plane wave (axis-aligned or oblique). */
+static int parse_source(parser *p, const cJSON *item, size_t i, mx_scene *s) {
+  const size_t axes = gm_yee_dim_axes(s->grid.dim);
+  const char *type = NULL;
+  int rc = get_string(p, item, "type", 1, &type) != 0 ? -1 : 0;
+  if (rc == 0 && strcmp(type, "point") == 0) {
+    static const char *const keys[] = {"type", "component", "position", "mode", "waveform",
+                                       NULL};
+    gm_point_source *src = &s->points[s->n_points];
+    const char *mode = "soft";
+    if (check_keys(p, item, keys) != 0 ||
+        get_component(p, item, "component", &s->grid, &src->component) != 0 ||
+        get_vector(p, item, "position", 1, axes, 3, 0, src->x) != 0 ||
+        get_string(p, item, "mode", 0, &mode) < 0 || parse_waveform(p, item, &src->wave) != 0)
+      rc = -1;
+    if (rc == 0) {
+      size_t o2 = push_key(p, "mode");
+      if (strcmp(mode, "soft") == 0)
+        src->mode = GM_SOURCE_SOFT;
+      else if (strcmp(mode, "hard") == 0)
+        src->mode = GM_SOURCE_HARD;
+      else
+        rc = fail(p, "expected \"soft\" or \"hard\", got \"%s\"", mode);
+      pop(p, o2);
+    }
+    if (rc == 0) s->point_json[s->n_points++] = i;
+  } else if (rc == 0 && strcmp(type, "plane-wave") == 0 &&
+             (member(item, "theta") || member(item, "phi") || member(item, "psi"))) {
+    rc = parse_oblique(p, item, axes, &s->obliques[s->n_obliques]);
+    if (rc == 0) s->oblique_json[s->n_obliques++] = i;
+  } else if (rc == 0 && strcmp(type, "plane-wave") == 0) {
+    static const char *const keys[] = {"type", "axis", "direction", "polarization", "lo",
+                                       "hi", "waveform", NULL};
+    gm_plane_wave *pw = &s->planes[s->n_planes];
+    double lo[3], hi[3], dir = 1;
+    if (check_keys(p, item, keys) != 0 || get_axis(p, item, "axis", axes, &pw->axis) != 0 ||
+        get_number(p, item, "direction", 0, &dir) < 0 ||
+        get_component(p, item, "polarization", &s->grid, &pw->polarization) != 0 ||
+        get_vector(p, item, "lo", 1, axes, 3, 0, lo) != 0 ||
+        get_vector(p, item, "hi", 1, axes, 3, 0, hi) != 0 ||
+        parse_waveform(p, item, &pw->wave) != 0)
+      rc = -1;
+    if (rc == 0 && dir != 1 && dir != -1) {
+      size_t o2 = push_key(p, "direction");
+      rc = fail(p, "expected 1 or -1, got %g", dir);
+      pop(p, o2);
+    }
+    for (size_t a = 0; rc == 0 && a < 3; ++a) {
+      /* lo and hi are vertex indices of the total-field box */
+      const char *key = NULL;
+      if (lo[a] < 0 || floor(lo[a]) != lo[a]) key = "lo";
+      if (hi[a] < 0 || floor(hi[a]) != hi[a]) key = "hi";
+      if (key != NULL) {
+        size_t o2 = push_key(p, key), o3 = push_index(p, a);
+        rc = fail(p, "expected a vertex index (a non-negative integer)");
+        pop(p, o3);
+        pop(p, o2);
+      }
+      pw->lo[a] = (size_t)lo[a];
+      pw->hi[a] = (size_t)hi[a];
+    }
+    pw->sign = dir > 0 ? 1 : -1;
+    if (rc == 0) s->plane_json[s->n_planes++] = i;
+  } else if (rc == 0) {
+    size_t o2 = push_key(p, "type");
+    rc = fail(p, "unknown source type \"%s\" (point, plane-wave)", type);
+    pop(p, o2);
+  }
+  return rc;
+}
+
 static int parse_sources(parser *p, const cJSON *root, mx_scene *s) {
   const cJSON *list;
   int rc = get_array(p, root, "sources", &list);
@@ -565,83 +653,33 @@ static int parse_sources(parser *p, const cJSON *root, mx_scene *s) {
   if (s->points == NULL || s->planes == NULL || s->point_json == NULL || s->plane_json == NULL ||
       s->obliques == NULL || s->oblique_json == NULL)
     return fail(p, "out of memory");
-  size_t old = push_key(p, "sources");
-  size_t axes = gm_yee_dim_axes(s->grid.dim);
-  size_t i = 0;
-  const cJSON *item;
-  rc = 0;
-  cJSON_ArrayForEach(item, list) {
-    size_t o = push_index(p, i++);
-    const char *type = NULL;
-    if (!cJSON_IsObject(item)) rc = fail(p, "expected an object, got %s", type_name(item));
-    if (rc == 0 && get_string(p, item, "type", 1, &type) != 0) rc = -1;
-    if (rc == 0 && strcmp(type, "point") == 0) {
-      static const char *const keys[] = {"type", "component", "position", "mode", "waveform",
-                                         NULL};
-      gm_point_source *src = &s->points[s->n_points];
-      const char *mode = "soft";
-      if (check_keys(p, item, keys) != 0 ||
-          get_component(p, item, "component", &s->grid, &src->component) != 0 ||
-          get_vector(p, item, "position", 1, axes, 3, 0, src->x) != 0 ||
-          get_string(p, item, "mode", 0, &mode) < 0 || parse_waveform(p, item, &src->wave) != 0)
-        rc = -1;
-      if (rc == 0) {
-        size_t o2 = push_key(p, "mode");
-        if (strcmp(mode, "soft") == 0)
-          src->mode = GM_SOURCE_SOFT;
-        else if (strcmp(mode, "hard") == 0)
-          src->mode = GM_SOURCE_HARD;
-        else
-          rc = fail(p, "expected \"soft\" or \"hard\", got \"%s\"", mode);
-        pop(p, o2);
-      }
-      if (rc == 0) s->point_json[s->n_points++] = i - 1;
-    } else if (rc == 0 && strcmp(type, "plane-wave") == 0 &&
-               (member(item, "theta") || member(item, "phi") || member(item, "psi"))) {
-      rc = parse_oblique(p, item, axes, &s->obliques[s->n_obliques]);
-      if (rc == 0) s->oblique_json[s->n_obliques++] = i - 1;
-    } else if (rc == 0 && strcmp(type, "plane-wave") == 0) {
-      static const char *const keys[] = {"type", "axis", "direction", "polarization", "lo",
-                                         "hi", "waveform", NULL};
-      gm_plane_wave *pw = &s->planes[s->n_planes];
-      double lo[3], hi[3], dir = 1;
-      if (check_keys(p, item, keys) != 0 || get_axis(p, item, "axis", axes, &pw->axis) != 0 ||
-          get_number(p, item, "direction", 0, &dir) < 0 ||
-          get_component(p, item, "polarization", &s->grid, &pw->polarization) != 0 ||
-          get_vector(p, item, "lo", 1, axes, 3, 0, lo) != 0 ||
-          get_vector(p, item, "hi", 1, axes, 3, 0, hi) != 0 ||
-          parse_waveform(p, item, &pw->wave) != 0)
-        rc = -1;
-      if (rc == 0 && dir != 1 && dir != -1) {
-        size_t o2 = push_key(p, "direction");
-        rc = fail(p, "expected 1 or -1, got %g", dir);
-        pop(p, o2);
-      }
-      for (size_t a = 0; rc == 0 && a < 3; ++a) {
-        /* lo and hi are vertex indices of the total-field box */
-        const char *key = NULL;
-        if (lo[a] < 0 || floor(lo[a]) != lo[a]) key = "lo";
-        if (hi[a] < 0 || floor(hi[a]) != hi[a]) key = "hi";
-        if (key != NULL) {
-          size_t o2 = push_key(p, key), o3 = push_index(p, a);
-          rc = fail(p, "expected a vertex index (a non-negative integer)");
-          pop(p, o3);
-          pop(p, o2);
-        }
-        pw->lo[a] = (size_t)lo[a];
-        pw->hi[a] = (size_t)hi[a];
-      }
-      pw->sign = dir > 0 ? 1 : -1;
-      if (rc == 0) s->plane_json[s->n_planes++] = i - 1;
-    } else if (rc == 0) {
-      size_t o2 = push_key(p, "type");
-      rc = fail(p, "unknown source type \"%s\" (point, plane-wave)", type);
-      pop(p, o2);
-    }
-    pop(p, o);
-    if (rc != 0) break;
+  return for_each_object(p, list, "sources", parse_source, s);
+}
+
+/* One element of "probes". */
+static int parse_probe(parser *p, const cJSON *item, size_t i, mx_scene *s) {
+  const size_t axes = gm_yee_dim_axes(s->grid.dim);
+  int rc = 0;
+  mx_probe *pr = &s->probes[s->n_probes];
+  const char *name = NULL;
+  static const char *const keys[] = {"name", "component", "position", NULL};
+  if (check_keys(p, item, keys) != 0 ||
+      get_component(p, item, "component", &s->grid, &pr->component) != 0 ||
+      get_vector(p, item, "position", 1, axes, 3, 0, pr->x) != 0 ||
+      get_string(p, item, "name", 0, &name) < 0)
+    rc = -1;
+  if (rc == 0 && name != NULL && strpbrk(name, ",\"\n") != NULL) {
+    size_t o2 = push_key(p, "name");
+    rc = fail(p, "a probe name may not hold commas, quotes or line breaks");
+    pop(p, o2);
   }
-  pop(p, old);
+  if (rc == 0) {
+    if (name != NULL)
+      snprintf(pr->name, sizeof pr->name, "%s", name);
+    else
+      snprintf(pr->name, sizeof pr->name, "%s_%zu", gm_yee_component_name(pr->component), i);
+    s->n_probes++;
+  }
   return rc;
 }
 
@@ -651,39 +689,40 @@ static int parse_probes(parser *p, const cJSON *root, mx_scene *s) {
   if (rc != 0) return rc < 0 ? -1 : 0;
   s->probes = calloc((size_t)cJSON_GetArraySize(list) + 1, sizeof *s->probes);
   if (s->probes == NULL) return fail(p, "out of memory");
-  size_t old = push_key(p, "probes");
-  size_t axes = gm_yee_dim_axes(s->grid.dim);
-  size_t i = 0;
-  const cJSON *item;
-  rc = 0;
-  cJSON_ArrayForEach(item, list) {
-    size_t o = push_index(p, i);
-    mx_probe *pr = &s->probes[s->n_probes];
-    const char *name = NULL;
-    static const char *const keys[] = {"name", "component", "position", NULL};
-    if (!cJSON_IsObject(item)) rc = fail(p, "expected an object, got %s", type_name(item));
-    if (rc == 0 && (check_keys(p, item, keys) != 0 ||
-                    get_component(p, item, "component", &s->grid, &pr->component) != 0 ||
-                    get_vector(p, item, "position", 1, axes, 3, 0, pr->x) != 0 ||
-                    get_string(p, item, "name", 0, &name) < 0))
-      rc = -1;
-    if (rc == 0 && name != NULL && strpbrk(name, ",\"\n") != NULL) {
-      size_t o2 = push_key(p, "name");
-      rc = fail(p, "a probe name may not hold commas, quotes or line breaks");
+  return for_each_object(p, list, "probes", parse_probe, s);
+}
+
+/* One element of "flux": a plane whose Poynting flux is recorded. */
+static int parse_flux(parser *p, const cJSON *item, size_t i, mx_scene *s) {
+  const size_t axes = gm_yee_dim_axes(s->grid.dim);
+  int rc = 0;
+  mx_flux *fl = &s->fluxes[s->n_fluxes];
+  const char *name = NULL;
+  static const char *const keys[] = {"name", "axis", "position", NULL};
+  if (check_keys(p, item, keys) != 0 || get_axis(p, item, "axis", axes, &fl->axis) != 0 ||
+      get_number(p, item, "position", 1, &fl->position) != 0 ||
+      get_string(p, item, "name", 0, &name) < 0)
+    rc = -1;
+  if (rc == 0) {
+    const gm_yee_grid *g = &s->grid;
+    /* the solver's flux planes are the interior vertex planes 1 .. n−1 (fields.h) */
+    size_t na = g->n[fl->axis];
+    double u = (fl->position - g->origin[fl->axis]) / g->h[fl->axis];
+    if (!(u >= 0.5 && u < (double)na - 0.5)) {
+      size_t o2 = push_key(p, "position");
+      rc = fail(p, "%g is not inside the grid: a flux plane lies in [%g, %g]", fl->position,
+                g->origin[fl->axis] + g->h[fl->axis],
+                g->origin[fl->axis] + (double)(na - 1) * g->h[fl->axis]);
       pop(p, o2);
-    }
-    if (rc == 0) {
-      if (name != NULL)
-        snprintf(pr->name, sizeof pr->name, "%s", name);
+    } else {
+      fl->index = (size_t)floor(u + 0.5);
+      if (name != NULL && strpbrk(name, ",\"\n") == NULL)
+        snprintf(fl->name, sizeof fl->name, "%s", name);
       else
-        snprintf(pr->name, sizeof pr->name, "%s_%zu", gm_yee_component_name(pr->component), i);
-      s->n_probes++;
+        snprintf(fl->name, sizeof fl->name, "flux_%zu", i);
+      s->n_fluxes++;
     }
-    pop(p, o);
-    ++i;
-    if (rc != 0) break;
   }
-  pop(p, old);
   return rc;
 }
 
@@ -693,47 +732,7 @@ static int parse_fluxes(parser *p, const cJSON *root, mx_scene *s) {
   if (rc != 0) return rc < 0 ? -1 : 0;
   s->fluxes = calloc((size_t)cJSON_GetArraySize(list) + 1, sizeof *s->fluxes);
   if (s->fluxes == NULL) return fail(p, "out of memory");
-  size_t old = push_key(p, "flux");
-  size_t axes = gm_yee_dim_axes(s->grid.dim);
-  size_t i = 0;
-  const cJSON *item;
-  rc = 0;
-  cJSON_ArrayForEach(item, list) {
-    size_t o = push_index(p, i);
-    mx_flux *fl = &s->fluxes[s->n_fluxes];
-    const char *name = NULL;
-    static const char *const keys[] = {"name", "axis", "position", NULL};
-    if (!cJSON_IsObject(item)) rc = fail(p, "expected an object, got %s", type_name(item));
-    if (rc == 0 && (check_keys(p, item, keys) != 0 || get_axis(p, item, "axis", axes, &fl->axis) != 0 ||
-                    get_number(p, item, "position", 1, &fl->position) != 0 ||
-                    get_string(p, item, "name", 0, &name) < 0))
-      rc = -1;
-    if (rc == 0) {
-      const gm_yee_grid *g = &s->grid;
-      /* the solver's flux planes are the interior vertex planes 1 .. n−1 (fields.h) */
-      size_t na = g->n[fl->axis];
-      double u = (fl->position - g->origin[fl->axis]) / g->h[fl->axis];
-      if (!(u >= 0.5 && u < (double)na - 0.5)) {
-        size_t o2 = push_key(p, "position");
-        rc = fail(p, "%g is not inside the grid: a flux plane lies in [%g, %g]", fl->position,
-                  g->origin[fl->axis] + g->h[fl->axis],
-                  g->origin[fl->axis] + (double)(na - 1) * g->h[fl->axis]);
-        pop(p, o2);
-      } else {
-        fl->index = (size_t)floor(u + 0.5);
-        if (name != NULL && strpbrk(name, ",\"\n") == NULL)
-          snprintf(fl->name, sizeof fl->name, "%s", name);
-        else
-          snprintf(fl->name, sizeof fl->name, "flux_%zu", i);
-        s->n_fluxes++;
-      }
-    }
-    pop(p, o);
-    ++i;
-    if (rc != 0) break;
-  }
-  pop(p, old);
-  return rc;
+  return for_each_object(p, list, "flux", parse_flux, s);
 }
 
 static int parse_output(parser *p, const cJSON *root, mx_scene *s) {
