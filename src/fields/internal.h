@@ -187,6 +187,9 @@ int yee_tfsf_push_corr(yee_tfsf_corr *c, size_t *cap, int comp, size_t target, s
                        double coef);
 int yee_tfsf_in_box(const gm_yee *s, const size_t lo[3], const size_t hi[3], int c,
                     const long ijk[3]);
+#define YEE_TFSF_AUX_PML 60 /* nodes of graded matched loss at the far end of an aux grid */
+void yee_tfsf_background(const gm_yee *s, const size_t lo[3], double *eps, double *mu);
+int yee_tfsf_aux_grid(yee_tfsf *t, double d, double dt, double eps, double mu);
 /* One term of the Yee curl update of component c at ijk: coef × (component comp at the index
    shifted by shift along axis). */
 typedef struct yee_curl_term {

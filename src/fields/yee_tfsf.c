@@ -14,7 +14,6 @@
 #include "fields/internal.h"
 
 #define AUX_MARGIN 4  /* cells between the driven node and the box's entry face */
-#define AUX_PML 60    /* graded matched loss at the far end of the aux grid */
 
 void yee_tfsf_free(yee_tfsf *t) {
   free(t->e);
@@ -85,6 +84,46 @@ void yee_curl_terms(const gm_yee *s, int c, const long ijk[3], yee_curl_term ter
   }
 }
 
+/* The background medium of a TF/SF box: the cell at its lower corner. */
+void yee_tfsf_background(const gm_yee *s, const size_t lo[3], double *eps, double *mu) {
+  *eps = s->eps0;
+  *mu = s->mu0;
+  if (s->eps_cell) {
+    const size_t cell = lo[0] + s->L.n[0] * (lo[1] + s->L.n[1] * lo[2]);
+    *eps = s->eps_cell[cell];
+    *mu = s->mu_cell[cell];
+  }
+}
+
+/* The 1-D auxiliary grid of t->n_aux nodes with spacing d (drive at node 0) and its update
+ * coefficients: matched graded loss (σ* = σ μ/ε, graded as the cube of depth) over
+ * the last YEE_TFSF_AUX_PML nodes, ending in e = 0. 0, or −1 when out of memory. */
+int yee_tfsf_aux_grid(yee_tfsf *t, double d, double dt, double eps, double mu) {
+  t->drive = 0;
+  t->e = calloc(t->n_aux, sizeof(double));
+  t->h = calloc(t->n_aux, sizeof(double));
+  t->ca_e = calloc(t->n_aux, sizeof(double));
+  t->cb_e = calloc(t->n_aux, sizeof(double));
+  t->ca_h = calloc(t->n_aux, sizeof(double));
+  t->cb_h = calloc(t->n_aux, sizeof(double));
+  if (!t->e || !t->h || !t->ca_e || !t->cb_e || !t->ca_h || !t->cb_h) return -1;
+  t->inv_h = 1.0 / d;
+  const double smax = 0.8 * 4.0 / (d * sqrt(eps * mu)) * eps;
+  const size_t pml0 = t->n_aux - 1 - YEE_TFSF_AUX_PML;
+  for (size_t j = 0; j < t->n_aux; ++j) {
+    const double de = j > pml0 ? (double)(j - pml0) / YEE_TFSF_AUX_PML : 0.0;
+    const double dh =
+        (double)j + 0.5 > (double)pml0 ? ((double)j + 0.5 - (double)pml0) / YEE_TFSF_AUX_PML : 0.0;
+    const double se = smax * de * de * de, sh = smax * dh * dh * dh * mu / eps;
+    const double ae = se * dt / (2.0 * eps), ah = sh * dt / (2.0 * mu);
+    t->ca_e[j] = (1.0 - ae) / (1.0 + ae);
+    t->cb_e[j] = dt / eps / (1.0 + ae);
+    t->ca_h[j] = (1.0 - ah) / (1.0 + ah);
+    t->cb_h[j] = dt / mu / (1.0 + ah);
+  }
+  return 0;
+}
+
 /* Position of component c at index ijk in cell units, inside the closed TF box [lo, hi]? */
 int yee_tfsf_in_box(const gm_yee *s, const size_t lo[3], const size_t hi[3], int c,
                     const long ijk[3]) {
@@ -123,44 +162,18 @@ gm_status gm_yee_add_plane_wave(gm_yee *s, const gm_plane_wave *w, size_t *id) {
                      "plane wave: the box must satisfy 1 <= lo < hi <= n - 1 on every axis "
                      "(axis %d: lo %zu, hi %zu, n %zu)",
                      b, w->lo[b], w->hi[b], s->L.n[b]);
-  /* background medium: the first cell of the box */
-  double eps = s->eps0, mu = s->mu0;
-  if (s->eps_cell) {
-    const size_t cell = w->lo[0] + s->L.n[0] * (w->lo[1] + s->L.n[1] * w->lo[2]);
-    eps = s->eps_cell[cell];
-    mu = s->mu_cell[cell];
-  }
+  double eps, mu;
+  yee_tfsf_background(s, w->lo, &eps, &mu);
   yee_tfsf t = {0};
   t.wave = w->wave;
   const long span = (long)(w->hi[a] - w->lo[a]);
-  t.n_aux = (size_t)(span + 2 * AUX_MARGIN + AUX_PML + 1);
+  t.n_aux = (size_t)(span + 2 * AUX_MARGIN + YEE_TFSF_AUX_PML + 1);
   /* global node x ↔ aux node j: x = x0 + j (sign +1) or x = x0 − j (sign −1) */
   const long x0 = w->sign > 0 ? (long)w->lo[a] - AUX_MARGIN : (long)w->hi[a] + AUX_MARGIN;
-  t.drive = 0;
-  t.e = calloc(t.n_aux, sizeof(double));
-  t.h = calloc(t.n_aux, sizeof(double));
-  t.ca_e = calloc(t.n_aux, sizeof(double));
-  t.cb_e = calloc(t.n_aux, sizeof(double));
-  t.ca_h = calloc(t.n_aux, sizeof(double));
-  t.cb_h = calloc(t.n_aux, sizeof(double));
-  if (!t.e || !t.h || !t.ca_e || !t.cb_e || !t.ca_h || !t.cb_h) {
+  const double dt = s->dt;
+  if (yee_tfsf_aux_grid(&t, s->L.h[a], dt, eps, mu) != 0) {
     yee_tfsf_free(&t);
     return gm_fail(msg, cap_msg, GM_ENOMEM, "plane wave: out of memory");
-  }
-  const double dt = s->dt, hh = s->L.h[a];
-  t.inv_h = 1.0 / hh;
-  /* matched graded loss (σ* = σ μ/ε) over the last AUX_PML nodes, ending in e = 0 */
-  const double smax = 0.8 * 4.0 / (hh * sqrt(eps * mu)) * eps;
-  const size_t pml0 = t.n_aux - 1 - AUX_PML;
-  for (size_t j = 0; j < t.n_aux; ++j) {
-    const double de = j > pml0 ? (double)(j - pml0) / AUX_PML : 0.0;
-    const double dh = (double)j + 0.5 > (double)pml0 ? ((double)j + 0.5 - (double)pml0) / AUX_PML : 0.0;
-    const double se = smax * de * de * de, sh = smax * dh * dh * dh * mu / eps;
-    const double ae = se * dt / (2.0 * eps), ah = sh * dt / (2.0 * mu);
-    t.ca_e[j] = (1.0 - ae) / (1.0 + ae);
-    t.cb_e[j] = dt / eps / (1.0 + ae);
-    t.ca_h[j] = (1.0 - ah) / (1.0 + ah);
-    t.cb_h[j] = dt / mu / (1.0 + ah);
   }
   /* Along −a the aux grid runs backwards, so its d along j is −d along x: flip h's sign and
    * store h_aux = −h for the incident H. */

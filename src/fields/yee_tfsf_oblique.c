@@ -25,7 +25,6 @@
 #include "fields/internal.h"
 
 #define YEE_PI 3.14159265358979323846
-#define AUX_PML 60 /* graded matched loss at the far end of the aux grid */
 
 /* sin and cos of an angle in degrees, exact at multiples of 90°. */
 static void sincos_deg(double deg, double *sn, double *cs) {
@@ -141,13 +140,8 @@ gm_status gm_yee_add_oblique_wave(gm_yee *s, const gm_oblique_wave *w, size_t *i
                      "oblique wave: the box must satisfy 1 <= lo < hi <= n - 1 on every axis "
                      "(axis %d: lo %zu, hi %zu, n %zu)",
                      b, w->lo[b], w->hi[b], s->L.n[b]);
-  /* background medium: the first cell of the box */
-  double eps = s->eps0, mu = s->mu0;
-  if (s->eps_cell) {
-    const size_t cell = w->lo[0] + s->L.n[0] * (w->lo[1] + s->L.n[1] * w->lo[2]);
-    eps = s->eps_cell[cell];
-    mu = s->mu_cell[cell];
-  }
+  double eps, mu;
+  yee_tfsf_background(s, w->lo, &eps, &mu);
   const double c0 = 1.0 / sqrt(eps * mu), dt = s->dt;
   /* the match frequency: given, else the waveform's, else 1/(2π w) of a plain Gaussian */
   double f = w->match_frequency;
@@ -185,38 +179,15 @@ gm_status gm_yee_add_oblique_wave(gm_yee *s, const gm_oblique_wave *w, size_t *i
   const long j0 = (long)ceil(reach / d1) + 3; /* aux node of s = 0; node 0 is driven */
   yee_tfsf t = {0};
   t.wave = w->wave;
-  t.n_aux = (size_t)(j0 + (long)ceil((smax + reach) / d1) + 3 + AUX_PML + 1);
-  t.drive = 0;
-  t.e = calloc(t.n_aux, sizeof(double));
-  t.h = calloc(t.n_aux, sizeof(double));
-  t.ca_e = calloc(t.n_aux, sizeof(double));
-  t.cb_e = calloc(t.n_aux, sizeof(double));
-  t.ca_h = calloc(t.n_aux, sizeof(double));
-  t.cb_h = calloc(t.n_aux, sizeof(double));
+  t.n_aux = (size_t)(j0 + (long)ceil((smax + reach) / d1) + 3 + YEE_TFSF_AUX_PML + 1);
   t.ecorr.cubic = t.hcorr.cubic = w->interpolation != GM_INTERP_LINEAR;
   t.ecorr.frac = malloc(sizeof(double));
   t.hcorr.frac = malloc(sizeof(double));
-  if (!t.e || !t.h || !t.ca_e || !t.cb_e || !t.ca_h || !t.cb_h || !t.ecorr.frac ||
-      !t.hcorr.frac) {
+  if (!t.ecorr.frac || !t.hcorr.frac || yee_tfsf_aux_grid(&t, d1, dt, eps, mu) != 0) {
     yee_tfsf_free(&t);
     return gm_fail(msg, cap_msg, GM_ENOMEM, "oblique wave: out of memory");
   }
-  t.inv_h = 1.0 / d1;
-  /* matched graded loss (σ* = σ μ/ε) over the last AUX_PML nodes, ending in e = 0 (as the
-   * axis-aligned aux grid) */
-  const double sigmax = 0.8 * 4.0 / (d1 * sqrt(eps * mu)) * eps;
-  const size_t pml0 = t.n_aux - 1 - AUX_PML;
-  for (size_t j = 0; j < t.n_aux; ++j) {
-    const double de = j > pml0 ? (double)(j - pml0) / AUX_PML : 0.0;
-    const double dh =
-        (double)j + 0.5 > (double)pml0 ? ((double)j + 0.5 - (double)pml0) / AUX_PML : 0.0;
-    const double se = sigmax * de * de * de, sh = sigmax * dh * dh * dh * mu / eps;
-    const double ae = se * dt / (2.0 * eps), ah = sh * dt / (2.0 * mu);
-    t.ca_e[j] = (1.0 - ae) / (1.0 + ae);
-    t.cb_e[j] = dt / eps / (1.0 + ae);
-    t.ca_h[j] = (1.0 - ah) / (1.0 + ah);
-    t.cb_h[j] = dt / mu / (1.0 + ah);
-  }
+  const size_t pml0 = t.n_aux - 1 - YEE_TFSF_AUX_PML; /* nodes at or past it are lossy */
   size_t cap_e = 0, cap_h = 0;
   for (int c = 0; c < GM_YEE_N_COMPONENTS; ++c) {
     if (!s->active[c]) continue;
