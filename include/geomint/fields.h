@@ -539,9 +539,11 @@ gm_status gm_mesh_maxwell_add_current(gm_mesh_maxwell *s, size_t n_edges, const 
                                       const double *weights, const gm_waveform *wave,
                                       size_t *id);
 /* Probe: component c (GM_EX..GM_EZ: the Whitney interpolant of E; GM_HX..GM_HZ: of B over μ;
- * 2-D has Ex, Ey, Hz) at point x, recorded after every step (leapfrog) or, for the AVI, every
- * sample_dt of time from the synchronised fields. Room for capacity samples. GM_EINVAL: x in
- * no cell, a component the dimension lacks. */
+ * 2-D has Ex, Ey, Hz) at point x, recorded after every step (leapfrog: E at t − Δt/2) or, for
+ * the AVI, every sample_dt of time from the synchronised fields; an AVI E probe records the mean
+ * of E over the sampling interval (−ΔA/Δt, A = −∫E dt, exact), stamped at the interval's middle:
+ * E jumps at the events of the fast cells, and point samples would alias their modes. Room for
+ * capacity samples. GM_EINVAL: x in no cell, a component the dimension lacks. */
 gm_status gm_mesh_maxwell_add_probe(gm_mesh_maxwell *s, gm_yee_component c, const double x[3],
                                     size_t capacity, size_t *id);
 gm_status gm_mesh_maxwell_probe_samples(const gm_mesh_maxwell *s, size_t id, size_t *n,

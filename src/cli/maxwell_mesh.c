@@ -39,10 +39,12 @@ static const char usage[] =
     "  --exact-steps      AVI: every face exactly F x its limit (default: rounded down to\n"
     "                     power-of-two levels of the smallest step, faster per update)\n"
     "  --e5               seed 000 E5 on FILE.msh, a Gmsh box cavity refined near the walls\n"
-    "                     (examples/e5_cavity.msh): Whitney leapfrog spectrum against the\n"
-    "                     analytic resonances, then the AVI (F default 0.5) against uniform\n"
-    "                     stepping on a well-centred graded mesh of the box; --t-end (use 60),\n"
-    "                     --fmax, --seed apply\n"
+    "                     (examples/e5_cavity.msh, Delaunay: positive diagonal stars): the AVI\n"
+    "                     (F default 0.25) and the Whitney leapfrog, spectra against the\n"
+    "                     analytic resonances, then the cost of the AVI against uniform\n"
+    "                     stepping at its smallest step; --t-end (use 60), --fmax, --seed apply\n"
+    "  --sample S         (--e5) the AVI's probe interval (default 0.005)\n"
+    "  --t-compare T      (--e5) the final time of the cost comparison (default 1)\n"
     "  --out DIR          (--e5) write e5-spectrum.png there\n\n"
     "Exit status: 0 success, 1 the run failed, 2 bad arguments or mesh.\n";
 
@@ -97,7 +99,7 @@ static int observe(void *vctx, const gm_mesh_maxwell *s) {
 int cli_maxwell_mesh(int argc, char **argv) {
   int avi = 0, whitney = 0, allow = 0, e5 = 0, exact = 0;
   const char *out_dir = NULL;
-  double fraction = 0.0 /* 0.1, E5 0.5 */, courant = 0.9, dt = 0.0, t_end = 8.0, ly = 0.7, warp = 0.0, f_max = 2.0;
+  double fraction = 0.0 /* 0.1, E5 0.25 */, sample_dt = 0.005, t_compare = 1.0, courant = 0.9, dt = 0.0, t_end = 8.0, ly = 0.7, warp = 0.0, f_max = 2.0;
   size_t samples = 1000, seed = 1, rect = 0, snapshots = 4;
   const char *energy_path = NULL, *probe = NULL, *vtu = NULL;
   cli_option options[] = {{"--avi", CLI_ARG_FLAG, &avi, 0},
@@ -119,6 +121,8 @@ int cli_maxwell_mesh(int argc, char **argv) {
                           {"--warp", CLI_ARG_DOUBLE, &warp, 0},
                           {"--e5", CLI_ARG_FLAG, &e5, 0},
                           {"--exact-steps", CLI_ARG_FLAG, &exact, 0},
+                          {"--sample", CLI_ARG_DOUBLE, &sample_dt, 0},
+                          {"--t-compare", CLI_ARG_DOUBLE, &t_compare, 0},
                           {"--out", CLI_ARG_STRING, &out_dir, 0}};
   const char *pos[1];
   size_t n_pos = 0;
@@ -131,12 +135,14 @@ int cli_maxwell_mesh(int argc, char **argv) {
     return CLI_EXIT_USAGE;
   }
   if (cli_check_positive("maxwell mesh", "--t-end", t_end) != CLI_EXIT_OK) return CLI_EXIT_USAGE;
-  if (fraction == 0.0) fraction = e5 ? 0.5 : 0.1;
+  if (fraction == 0.0) fraction = e5 ? 0.25 : 0.1;
   if (!(fraction > 0.0 && fraction <= 1.0) ||
       !(courant > 0.0 && courant <= 1.0) || !(warp >= 0.0 && warp < 1.0) || !(ly > 0.0) ||
-      !isfinite(ly) || samples == 0 || !(f_max > 0.0) || (dt != 0.0 && !(dt > 0.0 && isfinite(dt)))) {
+      !isfinite(ly) || samples == 0 || !(sample_dt > 0.0 && isfinite(sample_dt)) ||
+      !(t_compare > 0.0 && isfinite(t_compare)) || !(f_max > 0.0) || (dt != 0.0 && !(dt > 0.0 && isfinite(dt)))) {
     cli_error("maxwell mesh", "bad option value (--t-end, --dt, --ly, --fmax > 0; --fraction, "
-                              "--courant in (0, 1]; --warp in [0, 1); --samples >= 1)");
+                              "--courant in (0, 1]; --warp in [0, 1); --samples >= 1; --sample, "
+                              "--t-compare > 0)");
     return CLI_EXIT_USAGE;
   }
   gm_error err = {{0}};
@@ -178,7 +184,8 @@ int cli_maxwell_mesh(int argc, char **argv) {
       gm_mesh_free(mesh);
       return CLI_EXIT_USAGE;
     }
-    status = cli_maxwell_mesh_e5(mesh, out_dir, t_end, seed, f_max, fraction);
+    status = cli_maxwell_mesh_e5(mesh, out_dir, t_end, seed, f_max, fraction, sample_dt,
+                                 t_compare);
     gm_mesh_free(mesh);
     return status;
   }

@@ -10,7 +10,7 @@ int cli_maxwell_mesh(int argc, char **argv);
 #include <stdint.h>
 #include "geomint/mesh.h"
 int cli_maxwell_mesh_e5(const gm_mesh *mesh, const char *out_dir, double t_end, uint64_t seed,
-                        double f_max, double fraction);
+                        double f_max, double fraction, double sample_dt, double t_compare);
 
 /* geomint maxwell mesh-cavity (maxwell_mesh_cavity.c): the PEC cavity convergence table. */
 int cli_maxwell_mesh_cavity(int argc, char **argv);

@@ -1,20 +1,24 @@
-/* geomint maxwell mesh CAVITY.msh --e5: seed 000 experiment E5 (notes §2) as one command.
- *  1. The Gmsh cavity (a box meshed with tetrahedra refined near the walls, e.g.
- *     examples/e5_cavity.msh): its circumcentric star is checked (Gmsh meshes are not
- *     well-centred, so the count of non-positive entries is printed and the Whitney star is
- *     used), random initial E, the leapfrog, E at one point every step, harminv resonances
- *     against the analytic ones of the box (every peak within 5 % of one: else "spurious"),
- *     and the spectrum with the analytic resonances marked (e5-spectrum.png).
- *  2. The AVI needs a diagonal star, hence a well-centred mesh, which Gmsh does not give: it
- *     runs on body-centred cubic tetrahedra of the same box (gm_mesh_bcc, without the boundary
- *     pyramids) mapped by an inversion in a sphere (conformal: the cells keep their shape and
- *     stay well-centred, create checks it; their size falls by 11× across the cavity — a
- *     per-axis grading x ↦ x − α sin(2πx)/(2π) stays well-centred only up to α ≈ 0.1, local
- *     limits within 1.9×, too little for the AVI to gain), every face at --fraction of its
- *     local limit (power-of-two levels), against uniform leapfrog stepping at the AVI's smallest
- *     step (the smallest stable step of the refined region): element updates, CPU time and the
- *     ratio, and the two runs' resonances against each other (the inverted cavity has no
- *     analytic spectrum). */
+/* geomint maxwell mesh CAVITY.msh --e5: seed 000 experiment E5 (notes §2) as one command, on
+ * the Gmsh cavity (a box meshed with tetrahedra refined near the walls, examples/e5_cavity.msh).
+ *  1. The circumcentric stars are checked. Gmsh's Delaunay mesh, left unoptimised
+ *     (examples/e5_cavity.geo), has positive ⋆_ε on every interior edge and ⋆_ν on every
+ *     interior face: for a Delaunay tetrahedralisation the circumcentric dual of an interior
+ *     edge is its Voronoi face and the dual of an interior face the Voronoi edge between two
+ *     circumcentres, both of positive measure — well-centredness is sufficient, not necessary.
+ *     Near-cospherical vertex sets (the box's corners and edges) give a few tiny dual cells,
+ *     hence tiny local CFL limits there: the case the AVI is for.
+ *  2. The AVI, every face at --fraction of its local limit (power-of-two levels), random initial
+ *     E, E at one point sampled every --sample time, harminv resonances against the analytic
+ *     ones of the box (every peak within 5 % of one: else "spurious"), energy and the
+ *     invariants, the spectrum with the analytic resonances marked (e5-spectrum.png).
+ *  3. The consistent (Whitney) star's leapfrog on the same mesh, its resonances the same way
+ *     (the reference discretisation; CHOLMOD at each step, CFL limit unaffected by the
+ *     near-cospherical cells).
+ *  4. Cost to --t-compare: the AVI against uniform leapfrog stepping (diagonal star) at the
+ *     AVI's smallest face step, the smallest stable step of the finest cells: face updates,
+ *     CPU time and their ratios; and the Whitney leapfrog's CPU time to the same time.
+ * If the stars are not positive (a mesh made with Gmsh's optimisers), 2 and 4 are skipped with
+ * the count, and 3 runs. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -110,13 +114,31 @@ static double nearest_rel(double f, const double *ref, size_t n) {
 
 typedef struct e5_run {
   gm_mesh_maxwell *s;
-  double cpu;
+  double *gauss0; /* owned: the Gauss residual per vertex at the start */
+  double cpu, e0, max_dev;
   size_t faces, edges;
 } e5_run;
 
-/* Create, random E (seed), three E probes at x, advance to t_end; s is owned by the caller. */
+static void e5_run_free(e5_run *r) {
+  gm_mesh_maxwell_free(r->s);
+  free(r->gauss0);
+}
+
+static int e5_observe(void *ctx, const gm_mesh_maxwell *s) {
+  e5_run *r = ctx;
+  gm_mesh_maxwell_energy en;
+  gm_mesh_maxwell_energy_get(s, &en);
+  if (r->e0 == 0.0) r->e0 = en.plain;
+  const double dev = fabs(en.plain - r->e0) / r->e0;
+  if (dev > r->max_dev) r->max_dev = dev;
+  return 0;
+}
+
+/* Create, random E (seed), E_x, E_y, E_z probes at x (sampled every step of the leapfrog, every
+ * sample_dt of the AVI; none if x is NULL), the plain energy's largest deviation, advance to
+ * t_end; s is owned by the caller. */
 static int e5_go(const gm_geometry *g, const gm_mesh_maxwell_options *o, uint64_t seed,
-                 const double x[3], double t_end, e5_run *r) {
+                 const double *x, double sample_dt, double t_end, e5_run *r) {
   gm_error err = {{0}};
   memset(r, 0, sizeof *r);
   if (gm_mesh_maxwell_create(g, NULL, NULL, o, &r->s, &err) != GM_OK) {
@@ -129,13 +151,28 @@ static int e5_go(const gm_geometry *g, const gm_mesh_maxwell_options *o, uint64_
   for (size_t e = 0; e < ne; ++e) E[e] = e5_rand(&seed);
   gm_mesh_maxwell_set_fields(r->s, E, NULL);
   free(E);
-  const size_t cap = (size_t)(t_end / gm_mesh_maxwell_dt(r->s)) + 4;
+  r->gauss0 = malloc(gm_complex_count(gm_geometry_complex(g), 0) * sizeof(double));
+  if (!r->gauss0) return CLI_EXIT_FAILURE;
+  gm_mesh_maxwell_gauss(r->s, r->gauss0);
+  const int avi = o->scheme == GM_MESH_AVI;
+  if (avi && gm_mesh_maxwell_set_sample_dt(r->s, sample_dt) != GM_OK) {
+    cli_error(E5, "%s", gm_mesh_maxwell_errmsg(r->s));
+    return CLI_EXIT_FAILURE;
+  }
+  const size_t cap = (size_t)(t_end / (avi ? sample_dt : gm_mesh_maxwell_dt(r->s))) + 4;
   const gm_yee_component comp[3] = {GM_EX, GM_EY, GM_EZ};
-  for (int c = 0; c < 3; ++c)
+  for (int c = 0; x && c < 3; ++c)
     if (gm_mesh_maxwell_add_probe(r->s, comp[c], x, cap, NULL) != GM_OK) {
       cli_error(E5, "probe: %s", gm_mesh_maxwell_errmsg(r->s));
       return CLI_EXIT_FAILURE;
     }
+  /* the energy 1000 times over the run (AVI: at probe samples) */
+  const double every_t = t_end / 1000.0;
+  size_t every = (size_t)(every_t / (avi ? sample_dt : gm_mesh_maxwell_dt(r->s)));
+  if (x && gm_mesh_maxwell_add_observer(r->s, every ? every : 1, e5_observe, r) != GM_OK) {
+    cli_error(E5, "observer: %s", gm_mesh_maxwell_errmsg(r->s));
+    return CLI_EXIT_FAILURE;
+  }
   const double t0 = cpu_now();
   if (gm_mesh_maxwell_advance_to(r->s, t_end) != GM_OK) {
     cli_error(E5, "%s", gm_mesh_maxwell_errmsg(r->s));
@@ -146,8 +183,65 @@ static int e5_go(const gm_geometry *g, const gm_mesh_maxwell_options *o, uint64_
   return CLI_EXIT_OK;
 }
 
+/* harminv of run r's probes in (f_lo, f_top) against the analytic resonances: a table, the
+ * count of spurious peaks (none within 5 % of an analytic resonance) and of the first n_check
+ * analytic resonances seen; writes *n_found peaks to found. */
+static void e5_spectrum(const e5_run *r, const double *ana, size_t n_ana, size_t n_check,
+                        double f_lo, double f_top, double *found, size_t *n_found) {
+  *n_found = probe_resonances(r->s, f_lo, f_top, found, E5_MAX_MODES);
+  size_t spurious = 0, matched = 0;
+  double worst = 0.0;
+  printf("   %-12s %-12s %s\n", "harminv", "analytic", "rel. error");
+  for (size_t i = 0; i < *n_found; ++i) {
+    const double rel = nearest_rel(found[i], ana, n_ana);
+    double near = ana[0];
+    for (size_t j = 0; j < n_ana; ++j)
+      if (fabs(found[i] - ana[j]) < fabs(found[i] - near)) near = ana[j];
+    printf("   %-12.5f %-12.5f %.2e%s\n", found[i], near, rel, rel > 0.05 ? "  SPURIOUS" : "");
+    if (rel > 0.05) ++spurious;
+    else worst = fmax(worst, rel);
+  }
+  for (size_t j = 0; j < n_check; ++j)
+    if (nearest_rel(ana[j], found, *n_found) <= 0.05) ++matched;
+  printf("   first %zu analytic resonances: %zu seen at the probe; %zu peaks, %zu spurious, worst "
+         "error of the others %.2e\n", n_check, matched, *n_found, spurious, worst);
+}
+
+/* Energy, div B and the drift of Gauss's law (the random E has a divergence; it must not move). */
+static int e5_invariants(const e5_run *r, size_t nv) {
+  gm_mesh_maxwell_energy en;
+  gm_mesh_maxwell_energy_get(r->s, &en);
+  double *g = malloc((nv ? nv : 1) * sizeof(double)), drift = 0.0;
+  if (!g) return CLI_EXIT_FAILURE;
+  gm_mesh_maxwell_gauss(r->s, g);
+  for (size_t v = 0; v < nv; ++v) drift = fmax(drift, fabs(g[v] - r->gauss0[v]));
+  free(g);
+  printf("   energy: start %.10g, end %.10g, max |E(t) - E0|/E0 %.3e over 1000 samples; max |div "
+         "B| %.2e, Gauss drift %.2e\n", r->e0, en.plain, r->max_dev, gm_mesh_maxwell_div_b(r->s),
+         drift);
+  return CLI_EXIT_OK;
+}
+
+/* The spectrum figure: the three probe signals of r (sampled at interval dt). */
+static void e5_plot(const e5_run *r, const char *out_dir, const char *title, double f_top,
+                    const double *ana, size_t n_check) {
+  char png[4096];
+  snprintf(png, sizeof png, "%s/e5-spectrum.png", out_dir);
+  size_t n;
+  const double *t, *v[3];
+  for (size_t c = 0; c < 3; ++c) gm_mesh_maxwell_probe_samples(r->s, c, &n, &t, &v[c]);
+  double *sig = n > 1 ? malloc(3 * n * sizeof(double)) : NULL;
+  if (!sig) return;
+  for (size_t c = 0; c < 3; ++c) memcpy(sig + c * n, v[c], n * sizeof(double));
+  if (cli_gnuplot_available() &&
+      mx_plot_spectrum(E5, png, title, 3, n, sig, t[1] - t[0], f_top * 1.1, ana, n_check) ==
+          CLI_EXIT_OK)
+    printf("   wrote %s\n", png);
+  free(sig);
+}
+
 int cli_maxwell_mesh_e5(const gm_mesh *mesh, const char *out_dir, double t_end, uint64_t seed,
-                        double f_max, double fraction) {
+                        double f_max, double fraction, double sample_dt, double t_compare) {
   gm_error err = {{0}};
   if (mesh->dim != 3 || mesh->N != 3) {
     cli_error(E5, "the E5 cavity is a tetrahedral mesh of a box");
@@ -169,145 +263,106 @@ int cli_maxwell_mesh_e5(const gm_mesh *mesh, const char *out_dir, double t_end, 
   printf("E5: PEC box %.4g x %.4g x %.4g, random initial E (seed %llu), t = %g, E at (%.3g, "
          "%.3g, %.3g)\n", L[0], L[1], L[2], (unsigned long long)seed, t_end, x[0], x[1], x[2]);
 
-  /* 1. the Gmsh mesh */
   gm_complex *cx = NULL;
   gm_geometry *g = NULL;
-  gm_mesh *bcc = NULL;
-  gm_complex *cx2 = NULL;
-  gm_geometry *g2 = NULL;
-  e5_run wh = {0}, avi = {0}, uni = {0};
+  e5_run avi = {0}, wh = {0}, ac = {0}, uc = {0}, wc = {0};
   int status = CLI_EXIT_FAILURE;
   if (gm_mesh_complex(mesh, &cx, &err) != GM_OK || gm_geometry_create(cx, NULL, &g, &err) != GM_OK) {
     cli_error(E5, "%s", err.message);
     status = CLI_EXIT_USAGE;
     goto done;
   }
+  /* 1. the mesh and its circumcentric stars */
   const double *vol = gm_geometry_primal_volumes(g, 3);
   double vmin = INFINITY, vmax = 0.0;
   for (size_t T = 0; T < gm_complex_count(cx, 3); ++T) vmin = fmin(vmin, vol[T]), vmax = fmax(vmax, vol[T]);
   printf("1. Gmsh mesh: %zu tetrahedra, %zu edges, %zu faces; cell volumes %.3g .. %.3g (ratio "
-         "%.0f: refined near the walls)\n", gm_complex_count(cx, 3), gm_complex_count(cx, 1),
+         "%.0f)\n", gm_complex_count(cx, 3), gm_complex_count(cx, 1),
          gm_complex_count(cx, 2), vmin, vmax, vmax / vmin);
-  gm_mesh_maxwell_options o = gm_mesh_maxwell_defaults();
-  gm_mesh_maxwell *probe_star = NULL;
-  if (gm_mesh_maxwell_create(g, NULL, NULL, &o, &probe_star, &err) == GM_OK) {
-    printf("   circumcentric star: positive (well-centred)\n");
-    gm_mesh_maxwell_free(probe_star);
-  } else {
-    printf("   circumcentric star: %s -> the Whitney star (CHOLMOD); the AVI cannot run here\n",
-           err.message);
-    o.star = GM_MESH_STAR_WHITNEY;
-  }
-  if ((status = e5_go(g, &o, seed, x, t_end, &wh)) != CLI_EXIT_OK) goto done;
-  double found[E5_MAX_MODES];
-  const size_t n_found = probe_resonances(wh.s, f_lo, f_top, found, E5_MAX_MODES);
-  size_t spurious = 0, matched = 0;
-  double worst = 0.0;
-  printf("   leapfrog dt %.4g (0.9 of the CFL limit), %zu steps, %.2f s CPU\n",
-         gm_mesh_maxwell_dt(wh.s), gm_mesh_maxwell_step(wh.s), wh.cpu);
-  printf("   %-12s %-12s %s\n", "harminv", "analytic", "rel. error");
-  for (size_t i = 0; i < n_found; ++i) {
-    const double r = nearest_rel(found[i], ana, n_ana);
-    double near = ana[0];
-    for (size_t j = 0; j < n_ana; ++j) if (fabs(found[i] - ana[j]) < fabs(found[i] - near)) near = ana[j];
-    printf("   %-12.5f %-12.5f %.2e%s\n", found[i], near, r, r > 0.05 ? "  SPURIOUS" : "");
-    if (r > 0.05) ++spurious;
-    else worst = fmax(worst, r);
-  }
-  for (size_t j = 0; j < n_check; ++j)
-    if (nearest_rel(ana[j], found, n_found) <= 0.05) ++matched;
-  printf("   first %zu analytic resonances: %zu seen at the probe; %zu peaks, %zu spurious, worst "
-         "error of the others %.2e\n", n_check, matched, n_found, spurious, worst);
-  if (out_dir) {
-    char png[4096];
-    snprintf(png, sizeof png, "%s/e5-spectrum.png", out_dir);
-    size_t n;
-    const double *t, *v0, *v1, *v2;
-    gm_mesh_maxwell_probe_samples(wh.s, 0, &n, &t, &v0);
-    gm_mesh_maxwell_probe_samples(wh.s, 1, &n, &t, &v1);
-    gm_mesh_maxwell_probe_samples(wh.s, 2, &n, &t, &v2);
-    double *sig = malloc(3 * n * sizeof(double));
-    if (sig && n > 1) {
-      memcpy(sig, v0, n * sizeof(double));
-      memcpy(sig + n, v1, n * sizeof(double));
-      memcpy(sig + 2 * n, v2, n * sizeof(double));
-      if (cli_gnuplot_available() &&
-          mx_plot_spectrum(E5, png, "E5: Gmsh cavity refined near the walls, leapfrog (Whitney "
-                           "star); dashed: analytic resonances", 3, n, sig, t[1] - t[0],
-                           f_top * 1.1, ana, n_check) == CLI_EXIT_OK)
-        printf("   wrote %s\n", png);
-    }
-    free(sig);
-  }
-
-  /* 2. the AVI against uniform stepping on a well-centred mesh refined towards the walls */
-  const double h = 0.1 * L[0];
-  size_t nc[3];
-  for (int d = 0; d < 3; ++d) nc[d] = (size_t)lround(L[d] / h) < 2 ? 2 : (size_t)lround(L[d] / h);
-  if (gm_mesh_bcc(lo, hi, nc[0], nc[1], nc[2], 0, &bcc, &err) != GM_OK) {
-    cli_error(E5, "%s", err.message);
-    goto done;
-  }
-  /* inversion in the sphere of radius d about p = lo − d e_x + centre of the x = lo face: a
-     Möbius map, conformal, so the tetrahedra keep their shape to first order and stay
-     well-centred (create checks it), while their size falls as d²/|x − p|² */
-  const double d_inv = 0.3 * L[0];
-  const double p_inv[3] = {lo[0] - d_inv, lo[1] + 0.5 * L[1], lo[2] + 0.5 * L[2]};
-  for (size_t v = 0; v < bcc->n_vertices; ++v) {
-    double *y = bcc->x + 3 * v, r2 = 0.0;
-    for (int d = 0; d < 3; ++d) r2 += (y[d] - p_inv[d]) * (y[d] - p_inv[d]);
-    for (int d = 0; d < 3; ++d) y[d] = p_inv[d] + (y[d] - p_inv[d]) * d_inv * d_inv / r2;
-  }
-  if (gm_mesh_complex(bcc, &cx2, &err) != GM_OK || gm_geometry_create(cx2, NULL, &g2, &err) != GM_OK) {
-    cli_error(E5, "%s", err.message);
-    goto done;
-  }
   gm_mesh_maxwell_options oa = gm_mesh_maxwell_defaults();
   oa.scheme = GM_MESH_AVI;
   oa.avi_fraction = fraction;
   oa.avi_levels = 1;
-  double xi[3], r2x = 0.0; /* the probe point's image */
-  for (int d = 0; d < 3; ++d) r2x += (x[d] - p_inv[d]) * (x[d] - p_inv[d]);
-  for (int d = 0; d < 3; ++d) xi[d] = p_inv[d] + (x[d] - p_inv[d]) * d_inv * d_inv / r2x;
-  if ((status = e5_go(g2, &oa, seed, xi, t_end, &avi)) != CLI_EXIT_OK) goto done;
-  gm_mesh_maxwell_options ou = gm_mesh_maxwell_defaults();
-  ou.dt = gm_mesh_maxwell_dt(avi.s); /* the AVI's smallest face step */
-  if ((status = e5_go(g2, &ou, seed, xi, t_end, &uni)) != CLI_EXIT_OK) goto done;
-  const double *lim = gm_mesh_maxwell_face_limits(avi.s);
-  double lmin = INFINITY, lmax = 0.0;
-  for (size_t f = 0; f < gm_complex_count(cx2, 2); ++f)
-    if (isfinite(lim[f])) lmin = fmin(lmin, lim[f]), lmax = fmax(lmax, lim[f]);
-  printf("2. AVI vs uniform stepping: bcc tetrahedra of the box inverted in a sphere (radius "
-         "%.3g, centre %.3g outside the x = %.3g wall; cells shrink as d^2/r^2 away from it), %zu "
-         "tetrahedra, local limits %.3g .. %.3g (ratio %.1f); steps %.2g x the local limit in %zu "
-         "power-of-two groups\n", d_inv, d_inv, lo[0], gm_complex_count(cx2, 3), lmin, lmax,
-         lmax / lmin, fraction, gm_mesh_maxwell_avi_groups(avi.s));
-  size_t active = 0; /* faces with an interior edge: the ones either scheme changes */
-  for (size_t f = 0; f < gm_complex_count(cx2, 2); ++f) active += isfinite(lim[f]) != 0;
-  const double uni_faces = (double)active * (double)gm_mesh_maxwell_step(uni.s);
-  printf("   uniform leapfrog at the smallest step %.4g: %zu steps, %.0f face updates (faces with "
-         "an interior edge), %.3f s CPU\n", ou.dt, gm_mesh_maxwell_step(uni.s), uni_faces,
-         uni.cpu);
-  printf("   AVI: %zu face updates, ratio to uniform %.3f; %.3f s CPU: time ratio AVI/uniform %.3f "
-         "(%s)\n", avi.faces, (double)avi.faces / uni_faces, avi.cpu, avi.cpu / uni.cpu,
-         avi.cpu < uni.cpu ? "faster" : "NOT faster");
-  double fa[E5_MAX_MODES], fu[E5_MAX_MODES];
-  /* the inverted cavity is about d across: its band is higher than the box's */
-  const double g_lo = f_lo * L[0] / d_inv, g_hi = f_top * L[0] / d_inv;
-  const size_t na = probe_resonances(avi.s, g_lo, g_hi, fa, E5_MAX_MODES);
-  const size_t nu = probe_resonances(uni.s, g_lo, g_hi, fu, E5_MAX_MODES);
-  double dmax = 0.0;
-  for (size_t i = 0; i < na; ++i) dmax = fmax(dmax, nearest_rel(fa[i], fu, nu));
-  printf("   resonances: AVI %zu, uniform %zu in (%.3g, %.3g); max relative distance of an AVI "
-         "peak to a uniform one %.2e\n", na, nu, g_lo, g_hi, dmax);
+  gm_mesh_maxwell *probe_star = NULL;
+  const int positive = gm_mesh_maxwell_create(g, NULL, NULL, &oa, &probe_star, &err) == GM_OK;
+  if (positive) {
+    const size_t nf = gm_complex_count(cx, 2);
+    const double *lim = gm_mesh_maxwell_face_limits(probe_star);
+    double *sorted = malloc((nf ? nf : 1) * sizeof(double));
+    size_t n = 0;
+    for (size_t f = 0; sorted && f < nf; ++f)
+      if (isfinite(lim[f])) sorted[n++] = lim[f];
+    if (sorted && n) {
+      qsort(sorted, n, sizeof(double), dbl_cmp);
+      const double med = sorted[n / 2];
+      size_t small = 0;
+      while (small < n && sorted[small] < 0.25 * med) ++small;
+      printf("   circumcentric stars: positive on every interior edge and face (the mesh is "
+             "Delaunay)\n   CFL limit of the whole mesh %.3g; local face limits %.3g .. %.3g, "
+             "median %.3g; %zu faces below 1/4 of the median (near-cospherical vertices)\n",
+             gm_mesh_maxwell_cfl_limit(probe_star), sorted[0], sorted[n - 1], med, small);
+    }
+    free(sorted);
+    gm_mesh_maxwell_free(probe_star);
+  } else {
+    printf("   circumcentric stars: %s\n   -> the AVI cannot run here (it needs a positive "
+           "diagonal star): make the mesh with examples/e5_cavity.geo (Delaunay, no "
+           "optimisation); the Whitney leapfrog runs alone\n", err.message);
+  }
+
+  /* 2. the AVI */
+  double found[E5_MAX_MODES];
+  size_t n_found;
+  if (positive) {
+    if ((status = e5_go(g, &oa, seed, x, sample_dt, t_end, &avi)) != CLI_EXIT_OK) goto done;
+    printf("2. AVI: every face at %.2g of its local limit in %zu power-of-two groups, smallest "
+           "step %.3g; E sampled every %.3g; %zu face updates, %.2f s CPU\n", fraction,
+           gm_mesh_maxwell_avi_groups(avi.s), gm_mesh_maxwell_dt(avi.s), sample_dt, avi.faces,
+           avi.cpu);
+    e5_spectrum(&avi, ana, n_ana, n_check, f_lo, f_top, found, &n_found);
+    if ((status = e5_invariants(&avi, gm_complex_count(cx, 0))) != CLI_EXIT_OK) goto done;
+    if (out_dir)
+      e5_plot(&avi, out_dir, "E5: Gmsh cavity refined near the walls, AVI (diagonal star); "
+              "dashed: analytic resonances", f_top, ana, n_check);
+  }
+
+  /* 3. the Whitney leapfrog */
+  gm_mesh_maxwell_options ow = gm_mesh_maxwell_defaults();
+  ow.star = GM_MESH_STAR_WHITNEY;
+  if ((status = e5_go(g, &ow, seed, x, 0.0, t_end, &wh)) != CLI_EXIT_OK) goto done;
+  printf("3. leapfrog, Whitney star (CHOLMOD): dt %.4g (0.9 of its CFL limit), %zu steps, %.2f s "
+         "CPU\n", gm_mesh_maxwell_dt(wh.s), gm_mesh_maxwell_step(wh.s), wh.cpu);
+  e5_spectrum(&wh, ana, n_ana, n_check, f_lo, f_top, found, &n_found);
+  if ((status = e5_invariants(&wh, gm_complex_count(cx, 0))) != CLI_EXIT_OK) goto done;
+  if (out_dir && !positive)
+    e5_plot(&wh, out_dir, "E5: Gmsh cavity refined near the walls, leapfrog (Whitney star); "
+            "dashed: analytic resonances", f_top, ana, n_check);
+
+  /* 4. cost to t_compare */
+  if (positive) {
+    if ((status = e5_go(g, &oa, seed, NULL, sample_dt, t_compare, &ac)) != CLI_EXIT_OK) goto done;
+    gm_mesh_maxwell_options ou = gm_mesh_maxwell_defaults();
+    ou.dt = gm_mesh_maxwell_dt(ac.s); /* the AVI's smallest face step */
+    if ((status = e5_go(g, &ou, seed, NULL, 0.0, t_compare, &uc)) != CLI_EXIT_OK) goto done;
+    if ((status = e5_go(g, &ow, seed, NULL, 0.0, t_compare, &wc)) != CLI_EXIT_OK) goto done;
+    const double uni_faces = (double)uc.faces;
+    printf("4. cost to t = %g:\n   uniform leapfrog (diagonal star) at the AVI's smallest step "
+           "%.4g: %zu steps, %.0f face updates, %.3f s CPU\n", t_compare, ou.dt,
+           gm_mesh_maxwell_step(uc.s), uni_faces, uc.cpu);
+    printf("   AVI: %zu face updates, ratio to uniform %.4f; %.3f s CPU: time ratio AVI/uniform "
+           "%.4f (%s)\n", ac.faces, (double)ac.faces / uni_faces, ac.cpu, ac.cpu / uc.cpu,
+           ac.cpu < uc.cpu ? "faster" : "NOT faster");
+    printf("   leapfrog, Whitney star at its own step: %zu steps, %.3f s CPU: time ratio "
+           "AVI/Whitney %.3f (%s)\n", gm_mesh_maxwell_step(wc.s), wc.cpu, ac.cpu / wc.cpu,
+           ac.cpu < wc.cpu ? "the AVI is faster" : "the Whitney leapfrog is faster");
+  }
   status = CLI_EXIT_OK;
 done:
-  gm_mesh_maxwell_free(wh.s);
-  gm_mesh_maxwell_free(avi.s);
-  gm_mesh_maxwell_free(uni.s);
-  gm_geometry_free(g2);
-  gm_complex_free(cx2);
-  gm_mesh_free(bcc);
+  e5_run_free(&avi);
+  e5_run_free(&wh);
+  e5_run_free(&ac);
+  e5_run_free(&uc);
+  e5_run_free(&wc);
   gm_geometry_free(g);
   gm_complex_free(cx);
   return status;

@@ -21,6 +21,7 @@ typedef struct mm_probe {
   double bary[4];  /* barycentric coordinates in the cell's ascending vertex order */
   size_t cap, n;
   double *t, *v;   /* owned */
+  double a_prev[3], t_prev; /* AVI, E probes: the interpolated A = −∫E dt at the last sample */
 } mm_probe;
 
 typedef struct mm_observer {
@@ -88,7 +89,10 @@ struct gm_mesh_maxwell {
 };
 
 /* Helpers shared by the files of the solver. */
+/* B: the fields' B at t (AVI: synchronised); AVI: s->work_e holds the synchronised A at t. */
 gm_status mm_probe_record(gm_mesh_maxwell *s, double t, const double *B);
+/* AVI: A synchronised to time t on every edge (A_e − E_e (t − τ_e)) into out (ne values). */
+void mm_avi_sync_a(const gm_mesh_maxwell *s, double t, double *out);
 gm_status mm_observe(gm_mesh_maxwell *s, size_t counter);
 void mm_heap_build(gm_mesh_maxwell *s);
 gm_status mm_groups_build(gm_mesh_maxwell *s); /* allocates the groups and the heap */

@@ -156,11 +156,16 @@ gm_status gm_mesh_maxwell_set_sample_dt(gm_mesh_maxwell *s, double sample_dt) {
   return GM_OK;
 }
 
+void mm_avi_sync_a(const gm_mesh_maxwell *s, double t, double *out) {
+  for (size_t e = 0; e < s->ne; ++e) out[e] = s->A[e] - s->E[e] * (t - s->tau_e[e]);
+}
+
 /* Probes of the AVI at time ts (<= the next event): fields synchronised to ts. */
 static gm_status avi_sample(gm_mesh_maxwell *s, double ts) {
   const double t_keep = s->t;
   s->t = ts; /* sync_b reads s->t */
   gm_mesh_maxwell_sync_b(s, s->work_f);
+  mm_avi_sync_a(s, ts, s->work_e);
   gm_status st = mm_probe_record(s, ts, s->work_f);
   ++s->n_samples;
   if (st == GM_OK && s->n_obs) st = mm_observe(s, s->n_samples);

@@ -326,7 +326,9 @@ gm_status gm_mesh_maxwell_create(const gm_geometry *g, const double *epsilon, co
   } else {
   st = build_stars(s, epsilon, mu, err);
   if (st != GM_OK) { gm_mesh_maxwell_free(s); return st; }
-  /* Non-positive stars on the interior: the mesh is not well-centred (seed 000 §3.3.2). */
+  /* Non-positive stars on the interior (seed 000 §3.3.2): the mesh is not well-centred, and not
+     Delaunay either — on a Delaunay mesh the circumcentric dual of an interior edge is its
+     Voronoi face and that of an interior face a Voronoi edge, both of positive measure. */
   size_t bad_e = 0, bad_f = 0;
   const unsigned char *bnd_f = gm_complex_boundary_mask(cx, 2);
   for (size_t e = 0; e < s->ne; ++e) {
@@ -339,8 +341,8 @@ gm_status gm_mesh_maxwell_create(const gm_geometry *g, const double *epsilon, co
     gm_mesh_maxwell_free(s);
     return gm_error_set(err, GM_EINVAL,
                         "mesh maxwell: the mesh is not well-centred: %zu interior edges with "
-                        "star_eps <= 0 and %zu faces with star_nu <= 0 (set allow_negative_stars "
-                        "to insist)", bad_e, bad_f);
+                        "star_eps <= 0 and %zu faces with star_nu <= 0 (nor Delaunay, which would "
+                        "have none; set allow_negative_stars to insist)", bad_e, bad_f);
   }
   for (size_t e = 0; e < s->ne; ++e) {
     if (!s->bnd_e[e] && s->eps_star[e] == 0.0) {

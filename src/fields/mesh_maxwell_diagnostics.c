@@ -49,7 +49,7 @@ gm_status gm_mesh_maxwell_add_probe(gm_mesh_maxwell *s, gm_yee_component c, cons
                    "add_probe: component %d is not carried (2-D meshes carry Ex, Ey, Hz)", (int)c);
   if (!x || !capacity)
     return gm_fail(s->errmsg, sizeof s->errmsg, GM_EINVAL, "add_probe: no point or capacity 0");
-  mm_probe p = {c, SIZE_MAX, {0}, capacity, 0, NULL, NULL};
+  mm_probe p = {c, SIZE_MAX, {0}, capacity, 0, NULL, NULL, {0, 0, 0}, s->t};
   for (size_t T = 0; T < s->nt; ++T)
     if (locate(s, T, x, p.bary)) { p.top = T; break; }
   if (p.top == SIZE_MAX)
@@ -59,6 +59,10 @@ gm_status gm_mesh_maxwell_add_probe(gm_mesh_maxwell *s, gm_yee_component c, cons
   mm_probe *grown = realloc(s->probe, (s->n_probe + 1) * sizeof *grown);
   if (!grown) return gm_fail(s->errmsg, sizeof s->errmsg, GM_ENOMEM, "add_probe: no memory");
   s->probe = grown;
+  if (is_e && s->opt.scheme == GM_MESH_AVI) { /* the interval means start here */
+    mm_avi_sync_a(s, s->t, s->work_e);
+    gm_dec_whitney_interpolate(s->cx, 1, s->work_e, p.top, p.bary, p.a_prev);
+  }
   p.t = malloc(capacity * sizeof(double));
   p.v = malloc(capacity * sizeof(double));
   if (!p.t || !p.v) {
@@ -88,7 +92,17 @@ gm_status mm_probe_record(gm_mesh_maxwell *s, double t, const double *B) {
                      i, p->cap);
     double comp[3] = {0, 0, 0};
     double value;
-    if (p->c <= GM_EZ) {
+    if (p->c <= GM_EZ && s->opt.scheme == GM_MESH_AVI) {
+      /* the mean of E over the sampling interval, exactly −ΔA/Δt, at the interval's middle:
+         under the AVI E is piecewise constant in time with jumps at the events of the fast
+         cells, and a point sample aliases their modes into the band */
+      gm_dec_whitney_interpolate(s->cx, 1, s->work_e, p->top, p->bary, comp);
+      const int k = p->c - GM_EX;
+      value = -(comp[k] - p->a_prev[k]) / (t - p->t_prev);
+      p->t[p->n] = 0.5 * (t + p->t_prev);
+      memcpy(p->a_prev, comp, sizeof comp);
+      p->t_prev = t;
+    } else if (p->c <= GM_EZ) {
       gm_dec_whitney_interpolate(s->cx, 1, s->E, p->top, p->bary, comp);
       value = comp[p->c - GM_EX];
       /* E is at t − Δt/2 in the leapfrog */
