@@ -532,9 +532,13 @@ const double *gm_mesh_maxwell_b(const gm_mesh_maxwell *s);
 /* B at the current time (AVI: B_σ = B_σ(t_0) − d₁ ∫ E dt with every edge brought to t). */
 void gm_mesh_maxwell_sync_b(const gm_mesh_maxwell *s, double *B);
 
-/* A current J_e = weights[i] · waveform(t_n) on edges[i] (interior edges, copied), leapfrog only:
+/* A current J_e = weights[i] · waveform(t_n) on edges[i] (interior edges, copied). Leapfrog:
  * D^{n+½} = D^{n−½} + Δt(d₁ᵀH^n − J^n); the charge it moves is booked,
- * ρ^{n+½} = ρ^{n−½} − Δt div J^n (div = −d₀ᵀ: outflow), so div D − ρ stays constant. */
+ * ρ^{n+½} = ρ^{n−½} − Δt div J^n (div = −d₀ᵀ: outflow), so div D − ρ stays constant. AVI
+ * (before the first advance): at an event at time t of a face holding edge e, with the face's
+ * Ampère impulse, D_e −= J_e(t) (t − τ_J), τ_J the time of e's last current impulse (each
+ * edge's current integrated over the intervals its faces' events cut; with equal steps the
+ * leapfrog's); the charge is booked the same way. */
 gm_status gm_mesh_maxwell_add_current(gm_mesh_maxwell *s, size_t n_edges, const size_t *edges,
                                       const double *weights, const gm_waveform *wave,
                                       size_t *id);

@@ -72,6 +72,12 @@ struct gm_mesh_maxwell {
   double *tau_e;    /* time each edge's A was last brought up to date */
   double *tau_f;    /* last update time of each face */
   double *B0;       /* B at t_0: B_σ(t) = B0_σ + (d₁ A(t))_σ */
+  /* currents under the AVI, per edge (CSR over the edges, rebuilt by add_current): the sources
+     j_src[j_start[e] .. j_start[e+1]) with weights j_w; j_tau: when e's current impulse was
+     last applied */
+  size_t *j_start, *j_src;
+  double *j_w, *j_tau;
+  size_t *j_edges, n_j_edges; /* the edges with a current, ascending */
   double *face_dt;  /* per-face step */
   /* groups: faces with bitwise equal steps; the faces of group g are
      group_face[group_start[g] .. group_start[g+1]) in ascending order */
@@ -91,6 +97,9 @@ struct gm_mesh_maxwell {
 /* Helpers shared by the files of the solver. */
 /* B: the fields' B at t (AVI: synchronised); AVI: s->work_e holds the synchronised A at t. */
 gm_status mm_probe_record(gm_mesh_maxwell *s, double t, const double *B);
+/* AVI: the per-edge CSR of the first n_cur currents (j_start, j_src, j_w; j_tau = 0);
+ * GM_ENOMEM leaves the previous one. */
+gm_status mm_avi_currents_build(gm_mesh_maxwell *s, size_t n_cur);
 /* AVI: A synchronised to time t on every edge (A_e − E_e (t − τ_e)) into out (ne values). */
 void mm_avi_sync_a(const gm_mesh_maxwell *s, double t, double *out);
 gm_status mm_observe(gm_mesh_maxwell *s, size_t counter);

@@ -10,9 +10,9 @@
 gm_status gm_mesh_maxwell_add_current(gm_mesh_maxwell *s, size_t n_edges, const size_t *edges,
                                       const double *weights, const gm_waveform *wave,
                                       size_t *id) {
-  if (s->opt.scheme != GM_MESH_LEAPFROG)
-    return gm_fail(s->errmsg, sizeof s->errmsg, GM_EUNSUPPORTED,
-                   "add_current: currents are implemented for the leapfrog only");
+  if (s->opt.scheme == GM_MESH_AVI && s->started)
+    return gm_fail(s->errmsg, sizeof s->errmsg, GM_EINVAL,
+                   "add_current: the AVI takes its currents before the first advance");
   if (!n_edges || !edges || !wave)
     return gm_fail(s->errmsg, sizeof s->errmsg, GM_EINVAL, "add_current: no edges or waveform");
   gm_error e;
@@ -42,6 +42,10 @@ gm_status gm_mesh_maxwell_add_current(gm_mesh_maxwell *s, size_t n_edges, const 
   memcpy(c->edges, edges, n_edges * sizeof(size_t));
   for (size_t i = 0; i < n_edges; ++i) c->w[i] = weights ? weights[i] : 1.0;
   c->wave = *wave;
+  if (s->opt.scheme == GM_MESH_AVI && mm_avi_currents_build(s, s->n_cur + 1) != GM_OK) {
+    free(c->edges); free(c->w);
+    return gm_fail(s->errmsg, sizeof s->errmsg, GM_ENOMEM, "add_current: no memory");
+  }
   if (id) *id = s->n_cur;
   ++s->n_cur;
   return GM_OK;

@@ -36,6 +36,7 @@ void gm_mesh_maxwell_free(gm_mesh_maxwell *s) {
   for (size_t i = 0; i < s->n_probe; ++i) { free(s->probe[i].t); free(s->probe[i].v); }
   free(s->probe);
   free(s->obs);
+  free(s->j_start); free(s->j_src); free(s->j_w); free(s->j_tau); free(s->j_edges);
   free(s->A); free(s->tau_e); free(s->tau_f); free(s->B0); free(s->face_dt);
   free(s->group_start); free(s->group_face); free(s->group_dt); free(s->k_g); free(s->heap);
   free(s);

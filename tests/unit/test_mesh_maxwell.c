@@ -77,6 +77,15 @@ Test(mesh_maxwell, bad_materials_and_steps) {
   while (!isfinite(lim[bad])) ++bad;
   fdt[bad] = 1.5 * lim[bad];
   cr_assert_eq(gm_mesh_maxwell_advance(s, 1), GM_EINVAL); /* no global step */
+  /* AVI currents: before the first advance only */
+  const gm_waveform pulse = {GM_WAVE_GAUSSIAN, 1.0, 1.0, 0.2, 0.5, 0.0, NULL, NULL};
+  const double xc[3] = {0.5, 0.35, 0.0};
+  const size_t ce = mm_nearest_interior_edge(&f, xc);
+  cr_assert_eq(gm_mesh_maxwell_add_current(s, 1, &ce, NULL, &pulse, NULL), GM_OK, "%s",
+               gm_mesh_maxwell_errmsg(s));
+  cr_assert_eq(gm_mesh_maxwell_advance_to(s, 0.01), GM_OK);
+  cr_assert_eq(gm_mesh_maxwell_add_current(s, 1, &ce, NULL, &pulse, NULL), GM_EINVAL);
+  cr_assert(strstr(gm_mesh_maxwell_errmsg(s), "before the first advance") != NULL);
   gm_mesh_maxwell_free(s);
   o.face_dt = fdt;
   expect_create(f.g, NULL, NULL, &o, GM_EINVAL, "local CFL");
