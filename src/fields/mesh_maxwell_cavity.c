@@ -1,7 +1,7 @@
 /* PEC cavity resonances on a mesh (issue 11, "3-D PEC cavity"): the analytic resonances of the
  * box, the circular cylinder and the sphere, and the ring-down measurement — a leapfrog run
- * excited by Gaussian current pulses on a few pseudo-random interior edges, E_x, E_y, E_z probed at
- * a few pseudo-random interior points and summed with pseudo-random weights (so no mode is
+ * excited by Gaussian current pulses on a few pseudo-random interior edges, E_x, E_y, E_z
+ * probed at a few pseudo-random interior points and summed with pseudo-random weights (so no mode is
  * missed by a node or a cancellation), harminv in bands of the summed signal. */
 #define _XOPEN_SOURCE 700 /* jn() from <math.h> (POSIX, hidden by -std=c11) */
 #include <math.h>
@@ -116,11 +116,11 @@ gm_status gm_cavity_cylinder_resonances(double R, double H, double f_max, size_t
   return GM_OK;
 }
 
-/* Spherical Bessel j_l(x) and j_{l−1}(x) (l >= 1, 0 < x <= 60) by Miller's downward recurrence
- * j_{k−1} = (2k+1)/x j_k − j_{k+1} from j_{L+1} = 0, j_L = tiny (L well above x and l, where
- * the minimal solution dominates), normalised by the exact j_0 = sin x/x or
- * j_1 = sin x/x² − cos x/x, whichever is larger (Abramowitz & Stegun 10.1.11, 10.1.19, and
- * §10.5 on the stability of the recurrence: upward is unstable for x < l). */
+/* Spherical Bessel j_l(x) and j_{l−1}(x) (l >= 1, 0 < x <= 60) by Miller's algorithm (DLMF
+ * §3.6(iii): upward recurrence loses digits for x < l, downward is stable for the minimal
+ * solution j): j_{k−1} = (2k+1)/x j_k − j_{k+1} (DLMF 10.51.1) from j_{L+1} = 0, j_L = tiny, L
+ * 40 above l + x, normalised by the exact j_0 = sin x/x or j_1 = sin x/x² − cos x/x (DLMF
+ * 10.49.3), whichever is larger. */
 static void sph_bessel(int l, double x, double *jl, double *jlm1) {
   const int L = l + (int)x + 40;
   double up = 0.0, cur = 1e-30, vl = 0.0, vlm1 = 0.0, v1 = 0.0;
@@ -142,7 +142,7 @@ static void sph_bessel(int l, double x, double *jl, double *jlm1) {
 }
 
 /* TE_l (te = 1): j_l(x); TM_l: d/dx[x j_l(x)] = x j_{l−1}(x) − l j_l(x) (from
- * j_l' = j_{l−1} − (l+1)/x j_l, A&S 10.1.22). */
+ * j_l' = j_{l−1} − (l+1)/x j_l, DLMF 10.51.2). */
 static double sphere_char(int l, int te, double x) {
   double jl, jlm1;
   sph_bessel(l, x, &jl, &jlm1);
