@@ -1,11 +1,13 @@
 /* The 3-D PEC cavity verification of issue 11 ("Invariants and verification"): the analytic
- * resonances (box multiplicities, cylinder Bessel zeros), and the Whitney-star leapfrog rung
- * down by gm_mesh_maxwell_cavity_modes (current pulses on random edges, E at random points,
- * harminv, the leapfrog's dispersion undone) at three resolutions of
+ * resonances (box multiplicities, cylinder Bessel zeros, sphere spherical-Bessel zeros), and
+ * the Whitney-star leapfrog rung down by gm_mesh_maxwell_cavity_modes (current pulses on random
+ * edges, E at random points, harminv, the leapfrog's dispersion undone) at three resolutions of
  *   - the box [0,1]×[0,0.75]×[0,0.5]: body-centred cubic tetrahedra with the boundary pyramids
  *     filled (so the mesh is the box), 4, 8, 12 cubes along x (a self-similar family);
  *   - the cylinder r = 0.5, height 0.6: the Gmsh meshes examples/cavity_cylinder_{1,2,3}.msh
  *     (scripts/cavity_cylinder_mesh.sh; sizes 0.14, 0.1, 0.07);
+ *   - the sphere r = 0.5: examples/cavity_sphere_{1,2,3}.msh (scripts/cavity_sphere_mesh.sh;
+ *     the same sizes; its own limits, see sphere_gmsh_whitney);
  *   - and in 2-D (TE) the rectangle [0,1]×[0,0.7] on self-similar acute meshes (diagonal star).
  * Asserted: every harminv peak below the 10th resonance lies within 5 % of an analytic one and
  * there are no more peaks than analytic modes (with multiplicity) in the band; the rates in h
