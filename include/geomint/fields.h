@@ -642,6 +642,11 @@ gm_status gm_cavity_box_resonances(const double L[3], double f_max, size_t cap, 
                                    size_t *n, gm_error *err);
 gm_status gm_cavity_cylinder_resonances(double R, double H, double f_max, size_t cap, double *f,
                                         size_t *n, gm_error *err);
+/* Sphere of radius a: TE_lnp j_l(x) = 0, TM_lnp [x j_l(x)]' = 0, f = x/(2πa), l >= 1, each
+ * listed 2l+1 times; spherical Bessel functions by Miller's downward recurrence, zeros by
+ * bisection to round-off. Errors (GM_EINVAL): as above, and 2π f_max a > 60. */
+gm_status gm_cavity_sphere_resonances(double a, double f_max, size_t cap, double *f, size_t *n,
+                                      gm_error *err);
 
 /* A ring-down measurement of a PEC cavity: the leapfrog on the mesh, excited by
  * Gaussian current pulses on a carrier at (f_min + f_max)/2 (time width pulse_width; 0: the
