@@ -66,11 +66,16 @@ gm_status gm_coordinates_to_barycentric(gm_coordinates kind, size_t n, const dou
 /* What a near-integrable splitting needs to know about a separable problem besides its
  * callbacks: n bodies with masses m (body 0 central, the others its "planets") under Newtonian
  * gravity with constant G, H = Σ|p_i|²/(2 m_i) + V(q), V translation invariant. The splitting
- * takes V's gradient from the problem (potential_gradient); the Kepler part from m and G. */
+ * takes the Kepler part from m and G, and V's gradient from the problem (potential_gradient)
+ * unless newtonian is 1: then V is exactly −G Σ_{i<j} m_i m_j/|q_i − q_j| (no softening,
+ * nothing added) and the splitting evaluates the interaction itself (in vector lanes, and in
+ * democratic heliocentric coordinates without the central body's terms, which cancel the
+ * Kepler terms exactly). Each evaluation is counted as a force evaluation either way. */
 typedef struct gm_celestial {
   size_t n_bodies;      /* ≥ 2 */
   const double *mass;   /* borrowed, n_bodies masses > 0 */
   double G;             /* > 0 */
+  int newtonian;        /* 1: V is point-mass gravity of these masses and nothing else */
 } gm_celestial;
 
 /* Check a description: n ≥ 2, G and masses positive and finite. err says which. */

@@ -18,10 +18,42 @@ void gm_heliocentric_from_barycentric(size_t n, const double *m, const double *q
 void gm_heliocentric_to_barycentric(size_t n, const double *m, const double *Q, const double *P,
                                     double *q, double *p);
 
+/* 1/k!, k = 2..27 (kepler.c) */
+extern const double gm_inverse_factorial[26];
+
+/* The vector kernels (lanes.h) at 2 and 4 lanes (lanes2.c, lanes4.c). The short path of the
+ * drift for ng ≤ KEPLER_MAX_GROUPS groups of 2 or 4 orbits (kepler_short.h; done[i]: whether
+ * orbit i's drift was made, else it needs the iteration); out[k] = 1/(s[k] √s[k]), k < count
+ * (inverse_cubes.h). */
+#define KEPLER_MAX_GROUPS 8
+typedef void gm_kepler_short_fn(size_t ng, const double *mu, double dt, const double *const *x0,
+                                const double *const *v0, double *const *dx, double *const *dv,
+                                int *done);
+gm_kepler_short_fn gm_kepler_short2, gm_kepler_short4;
+void gm_inverse_cubes2(size_t count, const double *s, double *out);
+void gm_inverse_cubes4(size_t count, const double *s, double *out);
+
+/* The width the module uses on this CPU (kepler.c): 4 with AVX2 (where the build has the AVX2
+ * kernels), else 2. Results are bitwise the same for both. */
+int gm_lane_width(void);
+static inline void gm_inverse_cubes(size_t count, const double *s, double *out) {
+  (gm_lane_width() == 4 ? gm_inverse_cubes4 : gm_inverse_cubes2)(count, s, out);
+}
+
+/* gm_kepler_drift_many with a given width, 2 or 4 (tests compare the two). */
+gm_status gm_kepler_drift_many_width(int width, size_t n, const double *mu, double dt,
+                                     const double *x, const double *v, double *dx, double *dv);
+
 /* gm_kepler_drift for n orbits (x, v, dx, dv: n 3-vectors; mu: n values) by the same dt, their
  * iterations interleaved (kepler.c). Same results as n calls. */
 gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const double *x,
                                const double *v, double *dx, double *dv);
+
+/* a_i = Σ_{j≠i, j ≥ first} G m_j (q_j − q_i)/|q_j − q_i|³ for the bodies i = first..n−1 (a: 3n
+ * values, those of bodies below first untouched); 1 when two bodies coincide, else 0
+ * (interaction.c). first = 1 leaves out the central body (democratic heliocentric). */
+int gm_newtonian_accelerations(size_t n, size_t first, const double *m, double G,
+                               const double *q, double *a);
 
 /* The Kepler part of the coordinates (system.c): μ_i of planet i's two-body problem and the
  * mass m'_i with P_i = m'_i Q̇_i (index 0: μ = 0, the total mass). */

@@ -20,10 +20,6 @@
  * (parabolic) the Stumpff series are used, so nothing divides by β. */
 #include <float.h>
 #include <math.h>
-#include <stdint.h>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include "celestial/internal.h"
 
@@ -34,7 +30,7 @@
 #define N_TERMS 13
 
 /* 1/k!, k = 2..27 (rounded to double) */
-static const double inverse_factorial[26] = {
+const double gm_inverse_factorial[26] = {
     5.00000000000000000e-01, 1.66666666666666657e-01, 4.16666666666666644e-02,
     8.33333333333333322e-03, 1.38888888888888894e-03, 1.98412698412698413e-04,
     2.48015873015873016e-05, 2.75573192239858925e-06, 2.75573192239858883e-07,
@@ -54,10 +50,10 @@ static inline void stumpff_g(double beta, double s, double g[4]) {
      * fewest that leave a truncation |z|^N/(2N+2)! below 1e-17 */
     const int terms = az < 0.002 ? 4 : az < 0.02 ? 5 : az < 0.09 ? 6 : az < 0.3 ? 7
                       : az < 0.7 ? 8 : az < 1.4 ? 9 : N_TERMS;
-    double c2 = inverse_factorial[2 * terms - 2], c3 = inverse_factorial[2 * terms - 1];
+    double c2 = gm_inverse_factorial[2 * terms - 2], c3 = gm_inverse_factorial[2 * terms - 1];
     for (int j = terms - 2; j >= 0; --j) {
-      c2 = inverse_factorial[2 * j] - z * c2;
-      c3 = inverse_factorial[2 * j + 1] - z * c3;
+      c2 = gm_inverse_factorial[2 * j] - z * c2;
+      c3 = gm_inverse_factorial[2 * j + 1] - z * c3;
     }
     g[2] = s * s * c2;
     g[3] = s * s * s * c3;
@@ -161,134 +157,20 @@ static gm_status solve(const kepler_equation *k, double s, double lo, double hi,
  * division. A lane fails (and gm_kepler_drift iterates) when s0 was not close enough: |d| too
  * large, or a Newton correction not at round-off level (|d2| > 2^-40 |s1|).
  *
- * Two orbits at a time in the lanes of a vector of two doubles (GCC/Clang vector extensions:
- * SSE2 on x86-64, plain scalar code elsewhere); each lane computes exactly what it would
- * alone (no operation mixes lanes, contraction to FMA is off), so a single drift, done as a
- * pair with itself, is bitwise the drift of the same orbit in any pair. The G functions come
- * from 6 terms of the Stumpff series for every lane (|z| < SHORT_Z = 0.09: the first term
- * left out, z⁶/14!, is below 1e-17 of c_2), so no lane's term count depends on the other's. */
-#define SHORT_STEP 0x1p-13
-#define SHORT_Z 0.09
-typedef double v2 __attribute__((vector_size(16)));
+ * Two or four orbits at a time in the lanes of a vector (kepler_short.h, the width picked by
+ * the CPU: gm_lane_width); each lane computes exactly what it would alone, so a single drift, done as
+ * a group of copies of itself, is bitwise the drift of the same orbit in any group and at
+ * either width. The G functions come from 6 terms of the Stumpff series for every lane
+ * (|z| < SHORT_Z = 0.09: the first term left out, z⁶/14!, is below 1e-17 of c_2), so no
+ * lane's term count depends on another's. */
 
-static inline v2 v2_sqrt(v2 a) {
-#if defined(__SSE2__)
-  return (v2)_mm_sqrt_pd((__m128d)a);
+int gm_lane_width(void) {
+#if defined(GM_CELESTIAL_AVX2)
+  return __builtin_cpu_supports("avx2") ? 4 : 2;
 #else
-  return (v2){sqrt(a[0]), sqrt(a[1])};
+  return 2;
 #endif
 }
-
-typedef long long v2i __attribute__((vector_size(16)));
-
-static inline v2 v2_abs(v2 a) { return (v2)((v2i)a & (v2i){INT64_MAX, INT64_MAX}); }
-
-/* lanes (bit j) where every component of the mask is true */
-static inline int lanes(v2i mask) { return (int)(mask[0] & 1) | (int)(mask[1] & 1) << 1; }
-
-/* finite: x − x is 0, not NaN */
-static inline v2i v2_finite(v2 a) { return a - a == 0.0; }
-
-/* whether a lane takes the short path: μ > 0, all finite, r0 > 0, dt ≠ 0, elliptic,
- * |ΔM| = |dt| β^{3/2}/μ < 0.3 (squared: no root), s0 on the side of dt, |β s0²| < SHORT_Z */
-static inline int lane_ok(v2 mu, v2 t, v2 r0, v2 eta, v2 beta, v2 s0) {
-  return lanes((mu > 0.0) & v2_finite(mu + t + r0 + eta + beta + s0) & (r0 > 0.0) & (t != 0.0) &
-               (beta > 0.0) & (t * t * beta * beta * beta < 0.09 * mu * mu) & (s0 * t > 0.0) &
-               (beta * s0 * s0 < SHORT_Z));
-}
-
-/* Short drifts of np ≤ MAX_PAIRS pairs of orbits (pair i, lane j: mu[2i+j], x0[2i+j],
- * v0[2i+j] → dx[2i+j], dv[2i+j]) by dt. Sets done[2i+j] to whether that drift was done (the
- * others' outputs are untouched). The work goes phase by phase over all pairs: each phase is
- * a latency chain (square root and division, the Horner series, the Householder division,
- * the Newton division), so the pairs of one phase run side by side; a pair at a time was
- * measured slower than scalar code (latency-bound). */
-#define MAX_PAIRS 8
-static void short_pairs(size_t np, const double *mu, double dt, const double *const *x0,
-                        const double *const *v0, double *const *dx, double *const *dv,
-                        int *done) {
-  v2 X[MAX_PAIRS][3], V[MAX_PAIRS][3], m[MAX_PAIRS], r0[MAX_PAIRS], eta[MAX_PAIRS],
-      beta[MAX_PAIRS], zeta[MAX_PAIRS], ir[MAX_PAIRS], s0[MAX_PAIRS], d[MAX_PAIRS],
-      g[MAX_PAIRS][4];
-  const v2 t = {dt, dt}, one = {1.0, 1.0};
-  int ok[MAX_PAIRS], any = 0;
-  for (size_t i = 0; i < np; ++i) { /* r0, η, β, ζ, 1/r0 and the start */
-    for (int c = 0; c < 3; ++c) {
-      X[i][c] = (v2){x0[2 * i][c], x0[2 * i + 1][c]};
-      V[i][c] = (v2){v0[2 * i][c], v0[2 * i + 1][c]};
-    }
-    m[i] = (v2){mu[2 * i], mu[2 * i + 1]};
-    r0[i] = v2_sqrt(X[i][0] * X[i][0] + X[i][1] * X[i][1] + X[i][2] * X[i][2]);
-    eta[i] = X[i][0] * V[i][0] + X[i][1] * V[i][1] + X[i][2] * V[i][2];
-    beta[i] = 2.0 * m[i] / r0[i] - (V[i][0] * V[i][0] + V[i][1] * V[i][1] + V[i][2] * V[i][2]);
-    zeta[i] = m[i] - beta[i] * r0[i];
-    ir[i] = one / r0[i];
-    const v2 tr = t * ir[i];
-    s0[i] = tr * (1.0 + tr * (-0.5 * eta[i] * ir[i] +
-                              tr * (0.5 * eta[i] * eta[i] * ir[i] * ir[i] -
-                                    zeta[i] * ir[i] * (1.0 / 6.0))));
-    ok[i] = lane_ok(m[i], t, r0[i], eta[i], beta[i], s0[i]);
-    any |= ok[i];
-  }
-  for (size_t i = 0; i < 2 * np; ++i) done[i] = 0;
-  if (!any) return;
-  for (size_t i = 0; i < np; ++i) { /* G at s0 and Householder's fourth-order step */
-    const v2 z = beta[i] * s0[i] * s0[i];
-    v2 c2 = inverse_factorial[10] * one, c3 = inverse_factorial[11] * one;
-    for (int j = 4; j >= 0; --j) {
-      c2 = inverse_factorial[2 * j] - z * c2;
-      c3 = inverse_factorial[2 * j + 1] - z * c3;
-    }
-    const v2 s = s0[i], b = beta[i], e = eta[i], k = zeta[i];
-    const v2 g2 = s * s * c2, g3 = s * s * s * c3, g1 = s - b * g3, g0 = 1.0 - b * g2;
-    const v2 f = r0[i] * s + e * g2 + k * g3 - t;
-    const v2 df = r0[i] + e * g1 + k * g2;
-    const v2 d2f = e * g0 + k * g1;
-    const v2 d3f = k * g0 - e * b * g1;
-    const v2 df2 = df * df;
-    d[i] = -(6.0 * f * df2 - 3.0 * f * f * d2f) /
-           (6.0 * df2 * df - 6.0 * f * df * d2f + f * f * d3f);
-    g[i][0] = g0, g[i][1] = g1, g[i][2] = g2, g[i][3] = g3;
-    ok[i] &= lanes(v2_abs(d[i]) <= SHORT_STEP * v2_abs(s));
-  }
-  for (size_t i = 0; i < np; ++i) { /* G at s0 + d, Newton's correction, the increments */
-    if (!ok[i]) continue;
-    const v2 b = beta[i], e = eta[i], k = zeta[i], dd = d[i];
-    const v2 g0 = g[i][0], g1 = g[i][1], g2 = g[i][2], g3 = g[i][3];
-    const v2 e1 = -b * g1, e2 = -b * g0, e3 = -b * e1, e4 = -b * e2;
-    const v2 h2 = 0.5 * dd, h3 = dd * (1.0 / 3.0), h4 = 0.25 * dd;
-    const v2 G3 = g3 + dd * (g2 + h2 * (g1 + h3 * (g0 + h4 * e1)));
-    const v2 G2 = g2 + dd * (g1 + h2 * (g0 + h3 * (e1 + h4 * e2)));
-    const v2 G1 = g1 + dd * (g0 + h2 * (e1 + h3 * (e2 + h4 * e3)));
-    const v2 G0 = g0 + dd * (e1 + h2 * (e2 + h3 * (e3 + h4 * e4)));
-    const v2 s1 = s0[i] + dd;
-    const v2 f1 = r0[i] * s1 + e * G2 + k * G3 - t;
-    const v2 r1 = r0[i] + e * G1 + k * G2;
-    const v2 inv_r1 = one / r1, d2 = -f1 * inv_r1;
-    ok[i] &= lanes(v2_abs(d2) <= 0x1p-40 * v2_abs(s1));
-    const v2 n2 = G2 + d2 * G1, n1 = G1 + d2 * G0;
-    /* 1/r at s1 + d2: r = r1 + d2 f''(s1) */
-    const v2 ri = inv_r1 * (1.0 - d2 * (e * G0 + k * G1) * inv_r1);
-    /* dx = (f − 1) x0 + g v0, dv = ḟ x0 + (ġ − 1) v0 */
-    const v2 f_1 = -m[i] * n2 * ir[i], gg = r0[i] * n1 + e * n2;
-    const v2 fdot = -m[i] * n1 * ri * ir[i], gdot_1 = -m[i] * n2 * ri;
-    v2 DX[3], DV[3];
-    for (int c = 0; c < 3; ++c) {
-      DX[c] = f_1 * X[i][c] + gg * V[i][c];
-      DV[c] = fdot * X[i][c] + gdot_1 * V[i][c];
-    }
-    ok[i] &= lanes(v2_finite(DX[0] + DX[1] + DX[2] + DV[0] + DV[1] + DV[2]));
-    for (int j = 0; j < 2; ++j) {
-      if (!(ok[i] >> j & 1)) continue;
-      for (int c = 0; c < 3; ++c) {
-        dx[2 * i + j][c] = DX[c][j];
-        dv[2 * i + j][c] = DV[c][j];
-      }
-      done[2 * i + j] = 1;
-    }
-  }
-}
-
 /* dx = (f − 1) x0 + g v0, dv = ḟ x0 + (ġ − 1) v0 from the G functions at the root */
 static inline void increments(double mu, const kepler_equation *k, double ir, double ri,
                               const double g[4], const double *x0, const double *v0, double *dx,
@@ -318,11 +200,12 @@ gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double
   k.zeta = mu - k.beta * r0;
   k.t = dt;
   double lo, hi, s0;
-  { /* the short path, as a pair with itself */
-    const double mus[2] = {mu, mu}, *xs[2] = {x0, x0}, *vs[2] = {v0, v0};
-    double sdx[3], sdv[3], *dxs[2] = {dx, sdx}, *dvs[2] = {dv, sdv};
-    int done[2];
-    short_pairs(1, mus, dt, xs, vs, dxs, dvs, done);
+  { /* the short path, as a group of copies of itself */
+    const double mus[4] = {mu, mu, mu, mu}, *xs[4] = {x0, x0, x0, x0}, *vs[4] = {v0, v0, v0, v0};
+    double sdx[3], sdv[3], *dxs[4] = {dx, sdx, sdx, sdx}, *dvs[4] = {dv, sdv, sdv, sdv};
+    int done[4];
+    (gm_lane_width() == 4 ? gm_kepler_short4 : gm_kepler_short2)(1, mus, dt, xs, vs, dxs, dvs,
+                                                                     done);
     if (done[0]) return GM_OK;
   }
   /* s(t) = t/r0 − η t²/(2 r0³) + (η²/(2 r0⁵) − ζ/(6 r0⁴)) t³ + O(t⁴), the inverse of
@@ -370,24 +253,27 @@ gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double
 
 /* Drifts of n independent orbits by the same dt (x, v, dx, dv: n 3-vectors, borrowed): each
  * result is bitwise the one of gm_kepler_drift. Short drifts (the drifts of a splitting
- * method) go through short_pairs two orbits at a time; any other orbit, or one whose start was
- * not close enough, is handed to gm_kepler_drift. */
-gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const double *x,
-                               const double *v, double *dx, double *dv) {
-  for (size_t base = 0; base < n; base += 2 * MAX_PAIRS) {
-    const size_t m = n - base < 2 * MAX_PAIRS ? n - base : 2 * MAX_PAIRS;
-    const double *xs[2 * MAX_PAIRS], *vs[2 * MAX_PAIRS];
-    double mus[2 * MAX_PAIRS], *dxs[2 * MAX_PAIRS], *dvs[2 * MAX_PAIRS], spare[6];
-    int done[2 * MAX_PAIRS];
-    for (size_t j = 0; j < m + (m & 1); ++j) {
-      const size_t i = base + (j < m ? j : m - 1); /* an odd last orbit pairs with itself */
+ * method) go through the short path `width` orbits at a time; any other orbit, or one whose
+ * start was not close enough, is handed to gm_kepler_drift. */
+gm_status gm_kepler_drift_many_width(int width, size_t n, const double *mu, double dt,
+                                     const double *x, const double *v, double *dx, double *dv) {
+  gm_kepler_short_fn *short_path = width == 4 ? gm_kepler_short4 : gm_kepler_short2;
+  const size_t w = width == 4 ? 4 : 2, chunk = w * KEPLER_MAX_GROUPS;
+  for (size_t base = 0; base < n; base += chunk) {
+    const size_t m = n - base < chunk ? n - base : chunk, padded = (m + w - 1) / w * w;
+    const double *xs[4 * KEPLER_MAX_GROUPS], *vs[4 * KEPLER_MAX_GROUPS];
+    double mus[4 * KEPLER_MAX_GROUPS], *dxs[4 * KEPLER_MAX_GROUPS], *dvs[4 * KEPLER_MAX_GROUPS],
+        spare[6];
+    int done[4 * KEPLER_MAX_GROUPS];
+    for (size_t j = 0; j < padded; ++j) {
+      const size_t i = base + (j < m ? j : m - 1); /* a short last group repeats its last orbit */
       mus[j] = mu[i];
       xs[j] = x + 3 * i;
       vs[j] = v + 3 * i;
       dxs[j] = j < m ? dx + 3 * i : spare;
       dvs[j] = j < m ? dv + 3 * i : spare + 3;
     }
-    short_pairs((m + 1) / 2, mus, dt, xs, vs, dxs, dvs, done);
+    short_path(padded / w, mus, dt, xs, vs, dxs, dvs, done);
     for (size_t j = 0; j < m; ++j) {
       if (done[j]) continue;
       gm_status st = gm_kepler_drift(mus[j], dt, xs[j], vs[j], dxs[j], dvs[j]);
@@ -395,4 +281,9 @@ gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const doub
     }
   }
   return GM_OK;
+}
+
+gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const double *x,
+                               const double *v, double *dx, double *dv) {
+  return gm_kepler_drift_many_width(gm_lane_width(), n, mu, dt, x, v, dx, dv);
 }

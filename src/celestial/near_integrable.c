@@ -172,11 +172,45 @@ static inline double inverse_cube(const double *x) {
   return 1.0 / (r2 * sqrt(r2));
 }
 
-/* The interaction acceleration at positions Q, into w->accel (planets only). */
-static gm_status interaction_acceleration(gm_integrator *it, const double *Q) {
+/* The interaction of a Newtonian problem (gm_celestial.newtonian), evaluated here with the
+ * pair sums of interaction.c: the same terms as below with the accelerations a = −M⁻¹∇V taken
+ * directly (no callback, the 1/r³ of the pairs and of the Kepler terms two at a time).
+ *   Jacobi:  acc_i = a_i − Σ_{j<i} m_j a_j/η_{i−1} + μ_i Q_i/|Q_i|³ over barycentric q;
+ *   democratic heliocentric: q_i − q_j = Q_i − Q_j, and the central body's pull on planet i,
+ *            −G m_0 Q_i/|Q_i|³, is the negative of the Kepler term, so both are left out and
+ *            acc_i is the planets' pull alone (no cancellation of O(1/ε) larger terms). */
+static gm_status newtonian_acceleration(gm_integrator *it, const double *Q) {
   ni_work *w = it->work;
   const size_t n = w->n;
-  double *q = w->q, *g = w->grad, *acc = w->accel;
+  double *q = w->q, *a = w->grad, *acc = w->accel;
+  it->stats.force_evals++;
+  const int dh = w->coordinates == GM_COORDINATES_DEMOCRATIC_HELIOCENTRIC;
+  if (gm_newtonian_accelerations(n, dh ? 1 : 0, w->m, w->sys->G, dh ? Q : q, dh ? acc : a))
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
+                   "two bodies are at the same position at t = %.17g", it->t);
+  if (dh) return GM_OK;
+  double *s = w->Qd, *ic = w->Vd; /* |Q_i|² and 1/|Q_i|³ (drift scratch, free here) */
+  for (size_t i = 1; i < n; ++i) {
+    const double *x = Q + 3 * i;
+    s[i - 1] = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+  }
+  gm_inverse_cubes(n - 1, s, ic);
+  double S[3]; /* Σ_{j<i} m_j a_j */
+  for (int k = 0; k < 3; ++k) S[k] = w->m[0] * a[k];
+  for (size_t i = 1; i < n; ++i) {
+    const double kepler = w->mu[i] * ic[i - 1];
+    for (int k = 0; k < 3; ++k) {
+      acc[3 * i + k] = a[3 * i + k] - S[k] * w->inv_eta[i - 1] + kepler * Q[3 * i + k];
+      S[k] += w->m[i] * a[3 * i + k];
+    }
+  }
+  return GM_OK;
+}
+
+/* Barycentric positions relative to the centre of mass from the internal Q, into w->q. */
+static void barycentric_positions(ni_work *w, const double *Q) {
+  const size_t n = w->n;
+  double *q = w->q;
   /* V is translation invariant, so the positions are taken relative to the centre of mass
    * (Q_0 = 0): the centre of mass moves with the total momentum (far, over 10⁹ days: ~5000 au
    * for the outer solar system), and positions about it would lose the digits of the
@@ -200,7 +234,19 @@ static gm_status interaction_acceleration(gm_integrator *it, const double *Q) {
     for (size_t i = 1; i < n; ++i)
       for (int k = 0; k < 3; ++k) q[3 * i + k] = Q[3 * i + k] + q[k];
   }
-  gm_status st = gm_eval_potential_gradient(it, it->t, q, g);
+}
+
+/* The interaction acceleration at positions Q, into w->accel (planets only). */
+static gm_status interaction_acceleration(gm_integrator *it, const double *Q) {
+  ni_work *w = it->work;
+  const size_t n = w->n;
+  double *g = w->grad, *acc = w->accel;
+  if (w->sys->newtonian) {
+    if (w->coordinates == GM_COORDINATES_JACOBI) barycentric_positions(w, Q);
+    return newtonian_acceleration(it, Q);
+  }
+  barycentric_positions(w, Q);
+  gm_status st = gm_eval_potential_gradient(it, it->t, w->q, g);
   if (st != GM_OK) return st;
   if (w->coordinates == GM_COORDINATES_JACOBI) {
     double S[3] = {g[0], g[1], g[2]}; /* Σ_{j<i} ∇_j V = −Σ_{j<i} F_j */

@@ -366,7 +366,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   nb->gravity = (gm_gravity){3 * n, n, params[P_G], params[P_EPS] * params[P_EPS], nb->mass};
   gm_gravity_setup(pb);
   if (params[P_CENTRAL] == 1.0) {
-    nb->celestial = (gm_celestial){n, nb->mass, params[P_G]};
+    nb->celestial = (gm_celestial){n, nb->mass, params[P_G], params[P_EPS] == 0.0};
     pb->celestial = &nb->celestial;
   }
   for (size_t i = 0; i < n; ++i)

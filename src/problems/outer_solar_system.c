@@ -67,7 +67,7 @@ static gm_status setup(void *ctx, const double *params, gm_problem *pb, double *
   for (size_t i = 0; i < n; ++i) s->mass[i] = i == 0 ? mass[0] : params[1] * mass[i];
   s->gravity = (gm_gravity){3 * n, n, gravitational_constant, 0.0, s->mass};
   gm_gravity_setup(pb);
-  s->celestial = (gm_celestial){n, s->mass, gravitational_constant};
+  s->celestial = (gm_celestial){n, s->mass, gravitational_constant, 1};
   pb->celestial = &s->celestial;
   for (size_t i = 0; i < n; ++i)
     for (size_t k = 0; k < 3; ++k) {
