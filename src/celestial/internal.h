@@ -23,21 +23,31 @@ extern const double gm_inverse_factorial[26];
 
 /* The vector kernels (lanes.h) at 2 and 4 lanes (lanes2.c, lanes4.c). The short path of the
  * drift for ng ≤ KEPLER_MAX_GROUPS groups of 2 or 4 orbits (kepler_short.h; done[i]: whether
- * orbit i's drift was made, else it needs the iteration); out[k] = 1/(s[k] √s[k]), k < count
- * (inverse_cubes.h). */
+ * orbit i's drift was made, else it needs the iteration). The kick's Newtonian accelerations
+ * from positions in separate x, y, z arrays of np entries (np a multiple of 4, np ≥ n), and
+ * its Kepler terms μ_k x_k/|x_k|³ (row_sums.h; 1 when a distance is zero). */
 #define KEPLER_MAX_GROUPS 8
 typedef void gm_kepler_short_fn(size_t ng, const double *mu, double dt, const double *const *x0,
                                 const double *const *v0, double *const *dx, double *const *dv,
                                 int *done);
 gm_kepler_short_fn gm_kepler_short2, gm_kepler_short4;
-void gm_inverse_cubes2(size_t count, const double *s, double *out);
-void gm_inverse_cubes4(size_t count, const double *s, double *out);
+typedef int gm_row_sums_fn(size_t n, size_t np, const double *x, const double *y,
+                           const double *z, const double *m, double G, double *a);
+gm_row_sums_fn gm_row_sums2, gm_row_sums4;
+typedef int gm_central_terms_fn(size_t count, const double *x, const double *y, const double *z,
+                                const double *mu, double *out);
+gm_central_terms_fn gm_central_terms2, gm_central_terms4;
 
 /* The width the module uses on this CPU (kepler.c): 4 with AVX2 (where the build has the AVX2
  * kernels), else 2. Results are bitwise the same for both. */
 int gm_lane_width(void);
-static inline void gm_inverse_cubes(size_t count, const double *s, double *out) {
-  (gm_lane_width() == 4 ? gm_inverse_cubes4 : gm_inverse_cubes2)(count, s, out);
+static inline int gm_row_sums(size_t n, size_t np, const double *x, const double *y,
+                              const double *z, const double *m, double G, double *a) {
+  return (gm_lane_width() == 4 ? gm_row_sums4 : gm_row_sums2)(n, np, x, y, z, m, G, a);
+}
+static inline int gm_central_terms(size_t count, const double *x, const double *y,
+                                   const double *z, const double *mu, double *out) {
+  return (gm_lane_width() == 4 ? gm_central_terms4 : gm_central_terms2)(count, x, y, z, mu, out);
 }
 
 /* gm_kepler_drift_many with a given width, 2 or 4 (tests compare the two). */
@@ -48,12 +58,6 @@ gm_status gm_kepler_drift_many_width(int width, size_t n, const double *mu, doub
  * iterations interleaved (kepler.c). Same results as n calls. */
 gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const double *x,
                                const double *v, double *dx, double *dv);
-
-/* a_i = Σ_{j≠i, j ≥ first} G m_j (q_j − q_i)/|q_j − q_i|³ for the bodies i = first..n−1 (a: 3n
- * values, those of bodies below first untouched); 1 when two bodies coincide, else 0
- * (interaction.c). first = 1 leaves out the central body (democratic heliocentric). */
-int gm_newtonian_accelerations(size_t n, size_t first, const double *m, double G,
-                               const double *q, double *a);
 
 /* The Kepler part of the coordinates (system.c): μ_i of planet i's two-body problem and the
  * mass m'_i with P_i = m'_i Q̇_i (index 0: μ = 0, the total mass). */

@@ -34,13 +34,11 @@ void KEPLER_SHORT(size_t np, const double *mu, double dt, const double *const *x
   const vd t = vd_splat(dt), one = vd_splat(1.0);
   int ok[KEPLER_MAX_GROUPS], any = 0;
   for (size_t i = 0; i < np; ++i) { /* r0, η, β, ζ, 1/r0 and the start */
-    for (int j = 0; j < VW; ++j) {
-      for (int c = 0; c < 3; ++c) {
-        X[i][c][j] = x0[VW * i + j][c];
-        V[i][c][j] = v0[VW * i + j][c];
-      }
-      m[i][j] = mu[VW * i + j];
+    for (int c = 0; c < 3; ++c) {
+      X[i][c] = vd_gather(x0 + VW * i, c);
+      V[i][c] = vd_gather(v0 + VW * i, c);
     }
+    m[i] = vd_load(mu + VW * i);
     r0[i] = vd_sqrt(X[i][0] * X[i][0] + X[i][1] * X[i][1] + X[i][2] * X[i][2]);
     eta[i] = X[i][0] * V[i][0] + X[i][1] * V[i][1] + X[i][2] * V[i][2];
     beta[i] = 2.0 * m[i] / r0[i] - (V[i][0] * V[i][0] + V[i][1] * V[i][1] + V[i][2] * V[i][2]);

@@ -14,6 +14,12 @@
 
 #include "celestial/internal.h"
 
+/* Passing 32-byte vectors without AVX has another ABI than with it; the helpers here are
+ * static inline, so no such call crosses a compilation unit. */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
 typedef double vd __attribute__((vector_size(8 * VW)));
 typedef long long vdi __attribute__((vector_size(8 * VW)));
 
@@ -21,6 +27,25 @@ static inline vd vd_splat(double x) {
   vd r;
   for (int j = 0; j < VW; ++j) r[j] = x;
   return r;
+}
+
+/* (p[0][c], …, p[VW−1][c]) built in registers: an element-by-element build goes through the
+ * stack, and the vector load that follows waits for the stores (measured: a third of a
+ * drift's time). */
+static inline vd vd_gather(const double *const *p, int c) {
+#if VW == 4
+  return (vd){p[0][c], p[1][c], p[2][c], p[3][c]};
+#else
+  return (vd){p[0][c], p[1][c]};
+#endif
+}
+
+static inline vd vd_load(const double *p) {
+#if VW == 4
+  return (vd){p[0], p[1], p[2], p[3]};
+#else
+  return (vd){p[0], p[1]};
+#endif
 }
 
 static inline vd vd_sqrt(vd a) {
@@ -43,12 +68,38 @@ static inline vd vd_abs(vd a) {
 
 /* lanes (bit j) where every component of the mask is true */
 static inline int lanes(vdi mask) {
+#if VW == 4 && defined(__AVX__)
+  return _mm256_movemask_pd((__m256d)mask);
+#elif VW == 2 && defined(__SSE2__)
+  return _mm_movemask_pd((__m128d)mask);
+#else
   int bits = 0;
   for (int j = 0; j < VW; ++j) bits |= (int)(mask[j] & 1) << j;
   return bits;
+#endif
 }
 
 /* finite: x − x is 0, not NaN */
 static inline vdi vd_finite(vd a) { return a - a == 0.0; }
+
+/* Four lanes whatever VW: kernels that sum across lanes (the kick's rows) use them in both
+ * instantiations, so the order of their sums, and so their rounding, is the same on every CPU
+ * (with VW = 2 the compiler runs each operation as two halves). */
+typedef double v4 __attribute__((vector_size(32)));
+typedef long long v4i __attribute__((vector_size(32)));
+
+static inline v4 v4_sqrt(v4 a) {
+#if defined(__AVX__)
+  return (v4)_mm256_sqrt_pd((__m256d)a);
+#elif defined(__SSE2__)
+  const __m128d lo = _mm_sqrt_pd((__m128d){a[0], a[1]}), hi = _mm_sqrt_pd((__m128d){a[2], a[3]});
+  return (v4){lo[0], lo[1], hi[0], hi[1]};
+#else
+  return (v4){sqrt(a[0]), sqrt(a[1]), sqrt(a[2]), sqrt(a[3])};
+#endif
+}
+
+static inline v4 v4_load(const double *p) { return (v4){p[0], p[1], p[2], p[3]}; }
+static inline v4 v4_splat(double x) { return (v4){x, x, x, x}; }
 
 #endif

@@ -49,6 +49,8 @@ typedef struct {
   double *q, *grad, *accel;  /* barycentric positions, ∇V, kick acceleration */
   double *Qd, *Vd;           /* the increments of a drift */
   double *Qs, *As;           /* SABAC: perturbed positions, the acceleration at Q */
+  size_t np;                 /* n rounded up to 4 */
+  double *soa;               /* 8 np: barycentric x, y, z, masses; planets' x, y, z, μ or m */
   double pending, pending_save; /* Kepler drift time owed by the last step (see internal_step) */
   int loaded;          /* Q, V hold the state of it->y (through C⁻¹) */
   double h_loaded;     /* the step the corrector of the loaded state was made for */
@@ -101,7 +103,9 @@ static gm_status init(gm_integrator *it) {
   for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
     if ((*arrays[k] = calloc(3 * n, sizeof(double))) == NULL) return GM_ENOMEM;
   w->m = malloc(7 * n * sizeof(double));
-  if (w->m == NULL) return GM_ENOMEM;
+  w->np = (n + 3) / 4 * 4;
+  w->soa = calloc(8 * w->np, sizeof(double)); /* padding stays 0 */
+  if (w->m == NULL || w->soa == NULL) return GM_ENOMEM;
   w->eta = w->m + n;
   w->mu = w->m + 2 * n;
   w->mr = w->m + 3 * n;
@@ -116,6 +120,9 @@ static gm_status init(gm_integrator *it) {
     w->inv_eta[i] = 1.0 / w->eta[i];
     w->m_over_eta[i] = w->m[i] / w->eta[i];
   }
+  for (size_t i = 0; i < n; ++i) w->soa[3 * w->np + i] = w->m[i]; /* the bodies' masses */
+  for (size_t i = 1; i < n; ++i) /* per planet: Jacobi's Kepler μ, or its mass */
+    w->soa[7 * w->np + i - 1] = w->coordinates == GM_COORDINATES_JACOBI ? w->mu[i] : w->m[i];
   return GM_OK;
 }
 
@@ -126,6 +133,7 @@ static void release(gm_integrator *it) {
                       w->cV_save, w->Qo,      w->Vo, w->cQo, w->cVo,   w->q,      w->grad,
                       w->accel,   w->m,       w->Qd, w->Vd, w->Qs, w->As};
   for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k) free(arrays[k]);
+  free(w->soa);
   free(w->ops);
   free(w);
   it->work = NULL;
@@ -173,37 +181,53 @@ static inline double inverse_cube(const double *x) {
 }
 
 /* The interaction of a Newtonian problem (gm_celestial.newtonian), evaluated here with the
- * pair sums of interaction.c: the same terms as below with the accelerations a = −M⁻¹∇V taken
- * directly (no callback, the 1/r³ of the pairs and of the Kepler terms two at a time).
- *   Jacobi:  acc_i = a_i − Σ_{j<i} m_j a_j/η_{i−1} + μ_i Q_i/|Q_i|³ over barycentric q;
+ * vector kernels of row_sums.h (no callback; the same terms as below):
+ *   Jacobi:  acc_i = a_i − Σ_{j<i} m_j a_j/η_{i−1} + μ_i Q_i/|Q_i|³, a = −M⁻¹∇V at the
+ *            barycentric positions (relative to the centre of mass, as below);
  *   democratic heliocentric: q_i − q_j = Q_i − Q_j, and the central body's pull on planet i,
  *            −G m_0 Q_i/|Q_i|³, is the negative of the Kepler term, so both are left out and
  *            acc_i is the planets' pull alone (no cancellation of O(1/ε) larger terms). */
 static gm_status newtonian_acceleration(gm_integrator *it, const double *Q) {
   ni_work *w = it->work;
-  const size_t n = w->n;
-  double *q = w->q, *a = w->grad, *acc = w->accel;
+  const size_t n = w->n, np = w->np;
+  double *bx = w->soa, *by = bx + np, *bz = by + np, *bm = bz + np;
+  double *px = bm + np, *py = px + np, *pz = py + np, *pk = pz + np;
+  double *a = w->grad, *acc = w->accel, *kepler = w->Vd; /* drift scratch, free here */
   it->stats.force_evals++;
-  const int dh = w->coordinates == GM_COORDINATES_DEMOCRATIC_HELIOCENTRIC;
-  if (gm_newtonian_accelerations(n, dh ? 1 : 0, w->m, w->sys->G, dh ? Q : q, dh ? acc : a))
-    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
-                   "two bodies are at the same position at t = %.17g", it->t);
-  if (dh) return GM_OK;
-  double *s = w->Qd, *ic = w->Vd; /* |Q_i|² and 1/|Q_i|³ (drift scratch, free here) */
   for (size_t i = 1; i < n; ++i) {
-    const double *x = Q + 3 * i;
-    s[i - 1] = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+    px[i - 1] = Q[3 * i];
+    py[i - 1] = Q[3 * i + 1];
+    pz[i - 1] = Q[3 * i + 2];
   }
-  gm_inverse_cubes(n - 1, s, ic);
-  double S[3]; /* Σ_{j<i} m_j a_j */
-  for (int k = 0; k < 3; ++k) S[k] = w->m[0] * a[k];
-  for (size_t i = 1; i < n; ++i) {
-    const double kepler = w->mu[i] * ic[i - 1];
-    for (int k = 0; k < 3; ++k) {
-      acc[3 * i + k] = a[3 * i + k] - S[k] * w->inv_eta[i - 1] + kepler * Q[3 * i + k];
-      S[k] += w->m[i] * a[3 * i + k];
+  int coincide;
+  if (w->coordinates == GM_COORDINATES_DEMOCRATIC_HELIOCENTRIC) {
+    coincide = gm_row_sums(n - 1, np, px, py, pz, pk, w->sys->G, acc + 3);
+  } else {
+    double R[3] = {0, 0, 0}; /* as in barycentric_positions */
+    for (size_t i = n - 1; i >= 1; --i) {
+      R[0] -= w->m_over_eta[i] * Q[3 * i];
+      R[1] -= w->m_over_eta[i] * Q[3 * i + 1];
+      R[2] -= w->m_over_eta[i] * Q[3 * i + 2];
+      bx[i] = Q[3 * i] + R[0];
+      by[i] = Q[3 * i + 1] + R[1];
+      bz[i] = Q[3 * i + 2] + R[2];
     }
+    bx[0] = R[0], by[0] = R[1], bz[0] = R[2];
+    coincide = gm_central_terms(n - 1, px, py, pz, pk, kepler) ||
+               gm_row_sums(n, np, bx, by, bz, bm, w->sys->G, a);
+    double S[3]; /* Σ_{j<i} m_j a_j */
+    for (int k = 0; k < 3; ++k) S[k] = w->m[0] * a[k];
+    for (size_t i = 1; i < n; ++i)
+      for (int k = 0; k < 3; ++k) {
+        acc[3 * i + k] = a[3 * i + k] - S[k] * w->inv_eta[i - 1] + kepler[3 * (i - 1) + k];
+        S[k] += w->m[i] * a[3 * i + k];
+      }
   }
+  if (coincide)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EDOMAIN,
+                   "two bodies (or a planet and its Kepler centre) are at the same position at "
+                   "t = %.17g",
+                   it->t);
   return GM_OK;
 }
 
@@ -241,10 +265,7 @@ static gm_status interaction_acceleration(gm_integrator *it, const double *Q) {
   ni_work *w = it->work;
   const size_t n = w->n;
   double *g = w->grad, *acc = w->accel;
-  if (w->sys->newtonian) {
-    if (w->coordinates == GM_COORDINATES_JACOBI) barycentric_positions(w, Q);
-    return newtonian_acceleration(it, Q);
-  }
+  if (w->sys->newtonian) return newtonian_acceleration(it, Q);
   barycentric_positions(w, Q);
   gm_status st = gm_eval_potential_gradient(it, it->t, w->q, g);
   if (st != GM_OK) return st;

@@ -278,48 +278,67 @@ Test(celestial, n_body_with_a_central_body) {
   gm_model_free(oss.model);
 }
 
-/* The splitting's own Newtonian pair sums (gm_newtonian_accelerations, used when the problem
- * says V is point-mass gravity) against a naive long double sum, for a few bodies and for
- * enough that rows of pairs are split across blocks; first = 1 leaves the central body out;
- * coinciding bodies are reported. */
+/* The splitting's own Newtonian sums (gm_row_sums and gm_central_terms, used when the
+ * problem says V is point-mass gravity) against a naive long double sum, for a few bodies and
+ * for more than one vector's worth, with the padding of the arrays full of garbage (it must be
+ * ignored); coinciding bodies and a zero distance are reported; both lane widths agree bitwise
+ * where the CPU has both. */
 #include "celestial/internal.h"
 
-Test(celestial, newtonian_pair_sums) {
-  const size_t sizes[] = {2, 6, 40, 150};
+Test(celestial, newtonian_sums) {
+  const size_t sizes[] = {2, 5, 6, 40, 150};
   srand(7);
-  double worst = 0;
+  double worst = 0, worst_central = 0;
   for (size_t t = 0; t < sizeof sizes / sizeof sizes[0]; ++t) {
-    const size_t n = sizes[t];
-    double *m = malloc(n * sizeof *m), *q = malloc(3 * n * sizeof *q), *a = malloc(3 * n * sizeof *a);
-    cr_assert(m && q && a);
-    for (size_t i = 0; i < n; ++i) {
-      m[i] = i == 0 ? 1.0 : 1e-3 * (0.5 + rand() / (double)RAND_MAX);
-      for (int c = 0; c < 3; ++c) q[3 * i + c] = 20.0 * rand() / (double)RAND_MAX - 10.0;
+    const size_t n = sizes[t], np = (n + 3) / 4 * 4;
+    double *x = malloc(5 * np * sizeof *x), *y = x + np, *z = y + np, *m = z + np, *mu = m + np;
+    double *a = malloc(3 * n * sizeof *a), *a2 = malloc(3 * n * sizeof *a2);
+    cr_assert(x && a && a2);
+    for (size_t i = 0; i < np; ++i) {
+      m[i] = i < n ? (i == 0 ? 1.0 : 1e-3 * (0.5 + rand() / (double)RAND_MAX)) : NAN;
+      mu[i] = i < n ? 0.5 + rand() / (double)RAND_MAX : NAN;
+      x[i] = i < n ? 20.0 * rand() / (double)RAND_MAX - 10.0 : NAN;
+      y[i] = i < n ? 20.0 * rand() / (double)RAND_MAX - 10.0 : (i == n ? y[0] : NAN);
+      z[i] = i < n ? 20.0 * rand() / (double)RAND_MAX - 10.0 : 0.0;
     }
-    for (size_t first = 0; first < 2; ++first) {
-      a[0] = a[1] = a[2] = 42.0;
-      cr_assert_eq(gm_newtonian_accelerations(n, first, m, 0.7, q, a), 0);
-      if (first == 1) cr_expect(a[0] == 42.0 && a[2] == 42.0, "body 0 untouched");
-      for (size_t i = first; i < n; ++i)
-        for (int c = 0; c < 3; ++c) {
-          long double sum = 0, size = 0;
-          for (size_t j = first; j < n; ++j) {
-            if (j == i) continue;
-            long double d[3], s = 0;
-            for (int k = 0; k < 3; ++k) d[k] = (long double)q[3 * j + k] - q[3 * i + k], s += d[k] * d[k];
-            const long double term = 0.7L * m[j] * d[c] / (s * sqrtl(s));
-            sum += term;
-            size += fabsl(term);
-          }
-          worst = fmax(worst, (double)(fabsl(a[3 * i + c] - sum) / size));
+    cr_assert_eq(gm_row_sums(n, np, x, y, z, m, 0.7, a), 0);
+    for (size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) {
+        long double sum = 0, size = 0;
+        for (size_t j = 0; j < n; ++j) {
+          if (j == i) continue;
+          const long double d[3] = {(long double)x[j] - x[i], (long double)y[j] - y[i],
+                                    (long double)z[j] - z[i]};
+          const long double s = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+          const long double term = 0.7L * m[j] * d[c] / (s * sqrtl(s));
+          sum += term;
+          size += fabsl(term);
         }
+        worst = fmax(worst, (double)(fabsl(a[3 * i + c] - sum) / size));
+      }
+    cr_assert_eq(gm_central_terms(n, x, y, z, mu, a), 0);
+    for (size_t i = 0; i < n; ++i) {
+      const long double s = (long double)x[i] * x[i] + (long double)y[i] * y[i] + (long double)z[i] * z[i];
+      const double c[3] = {x[i], y[i], z[i]};
+      for (int k = 0; k < 3; ++k)
+        worst_central = fmax(worst_central, (double)(fabsl(a[3 * i + k] - mu[i] * c[k] / (s * sqrtl(s))) /
+                                                      fabsl(mu[i] * c[k] / (s * sqrtl(s)))));
     }
-    q[3 * (n - 1)] = q[0], q[3 * (n - 1) + 1] = q[1], q[3 * (n - 1) + 2] = q[2];
-    cr_expect_eq(gm_newtonian_accelerations(n, 0, m, 0.7, q, a), 1, "coinciding bodies, n = %zu", n);
-    free(m), free(q), free(a);
+    if (gm_lane_width() == 4) {
+      cr_assert_eq(gm_row_sums2(n, np, x, y, z, m, 0.7, a2), 0);
+      cr_assert_eq(gm_row_sums4(n, np, x, y, z, m, 0.7, a), 0);
+      cr_expect(memcmp(a, a2, 3 * n * sizeof *a) == 0, "row sums differ between widths, n = %zu", n);
+    }
+    x[n - 1] = x[0], y[n - 1] = y[0], z[n - 1] = z[0];
+    cr_expect_eq(gm_row_sums(n, np, x, y, z, m, 0.7, a), 1, "coinciding bodies, n = %zu", n);
+    x[0] = y[0] = z[0] = 0.0;
+    cr_expect_eq(gm_central_terms(n, x, y, z, mu, a), 1, "zero distance, n = %zu", n);
+    free(x), free(a), free(a2);
   }
-  printf("newtonian pair sums: worst error %.2g relative to the sum of |terms|\n", worst);
+  printf("newtonian sums: worst error %.2g relative to the sum of |terms|, Kepler terms %.2g\n",
+         worst, worst_central);
   cr_expect_leq(worst, 1e-14, "%.3g", worst); /* measured 1.4e-15 (150 bodies: ~6 u) */
+  cr_expect_leq(worst_central, 1e-15, "%.3g", worst_central);
 }
 
 /* The stepper's own interaction and the problem's potential_gradient callback give the same
