@@ -54,12 +54,12 @@ void KEPLER_SHORT(size_t np, const double *mu, double dt, const double *const *x
   for (size_t i = 0; i < VW * np; ++i) done[i] = 0;
   if (!any) return;
   for (size_t i = 0; i < np; ++i) { /* G at s0 and Householder's fourth-order step */
-    const vd z = beta[i] * s0[i] * s0[i];
-    vd c2 = gm_inverse_factorial[10] * one, c3 = gm_inverse_factorial[11] * one;
-    for (int j = 4; j >= 0; --j) {
-      c2 = gm_inverse_factorial[2 * j] - z * c2;
-      c3 = gm_inverse_factorial[2 * j + 1] - z * c3;
-    }
+    /* c2 = Σ_{j<6} y^j/(2j+2)!, c3 = Σ_{j<6} y^j/(2j+3)!, y = −β s0², by Estrin's scheme (pairs of
+     * terms, then y²): half the dependent multiply-adds of Horner's rule on this latency chain */
+    const vd y = -(beta[i] * s0[i] * s0[i]), y2 = y * y;
+    const double *c = gm_inverse_factorial;
+    const vd c2 = (c[0] + c[2] * y) + y2 * ((c[4] + c[6] * y) + y2 * (c[8] + c[10] * y));
+    const vd c3 = (c[1] + c[3] * y) + y2 * ((c[5] + c[7] * y) + y2 * (c[9] + c[11] * y));
     const vd s = s0[i], b = beta[i], e = eta[i], k = zeta[i];
     const vd g2 = s * s * c2, g3 = s * s * s * c3, g1 = s - b * g3, g0 = 1.0 - b * g2;
     const vd f = r0[i] * s + e * g2 + k * g3 - t;
