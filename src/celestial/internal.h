@@ -22,14 +22,13 @@ void gm_heliocentric_to_barycentric(size_t n, const double *m, const double *Q, 
 extern const double gm_inverse_factorial[26];
 
 /* The vector kernels (lanes.h) at 2 and 4 lanes (lanes2.c, lanes4.c). The short path of the
- * drift for ng ≤ KEPLER_MAX_GROUPS groups of 2 or 4 orbits (kepler_short.h; done[i]: whether
- * orbit i's drift was made, else it needs the iteration). The kick's Newtonian accelerations
+ * drift for count ≤ VW KEPLER_MAX_GROUPS orbits, VW = 2 or 4 (kepler_short.h; done[k]: whether
+ * orbit k's drift was made, else it needs the iteration). The kick's Newtonian accelerations
  * from positions in separate x, y, z arrays of np entries (np a multiple of 4, np ≥ n), and
  * its Kepler terms μ_k x_k/|x_k|³ (row_sums.h; 1 when a distance is zero). */
 #define KEPLER_MAX_GROUPS 8
-typedef void gm_kepler_short_fn(size_t ng, const double *mu, double dt, const double *const *x0,
-                                const double *const *v0, double *const *dx, double *const *dv,
-                                int *done);
+typedef void gm_kepler_short_fn(size_t count, const double *mu, double dt, const double *x,
+                                const double *v, double *dx, double *dv, int *done);
 gm_kepler_short_fn gm_kepler_short2, gm_kepler_short4;
 typedef int gm_row_sums_fn(size_t n, size_t np, const double *x, const double *y,
                            const double *z, const double *m, double G, double *a);

@@ -201,12 +201,10 @@ gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double
   k.t = dt;
   double lo, hi, s0;
   { /* the short path, as a group of copies of itself */
-    const double mus[4] = {mu, mu, mu, mu}, *xs[4] = {x0, x0, x0, x0}, *vs[4] = {v0, v0, v0, v0};
-    double sdx[3], sdv[3], *dxs[4] = {dx, sdx, sdx, sdx}, *dvs[4] = {dv, sdv, sdv, sdv};
-    int done[4];
-    (gm_lane_width() == 4 ? gm_kepler_short4 : gm_kepler_short2)(1, mus, dt, xs, vs, dxs, dvs,
-                                                                     done);
-    if (done[0]) return GM_OK;
+    int done;
+    (gm_lane_width() == 4 ? gm_kepler_short4 : gm_kepler_short2)(1, &mu, dt, x0, v0, dx, dv,
+                                                                  &done);
+    if (done) return GM_OK;
   }
   /* s(t) = t/r0 − η t²/(2 r0³) + (η²/(2 r0⁵) − ζ/(6 r0⁴)) t³ + O(t⁴), the inverse of
    * t(s) = r0 s + η s²/2 + ζ s³/6 + O(s⁴): the start for drifts short against the orbit */
@@ -258,25 +256,15 @@ gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double
 gm_status gm_kepler_drift_many_width(int width, size_t n, const double *mu, double dt,
                                      const double *x, const double *v, double *dx, double *dv) {
   gm_kepler_short_fn *short_path = width == 4 ? gm_kepler_short4 : gm_kepler_short2;
-  const size_t w = width == 4 ? 4 : 2, chunk = w * KEPLER_MAX_GROUPS;
+  const size_t chunk = (width == 4 ? 4 : 2) * KEPLER_MAX_GROUPS;
   for (size_t base = 0; base < n; base += chunk) {
-    const size_t m = n - base < chunk ? n - base : chunk, padded = (m + w - 1) / w * w;
-    const double *xs[4 * KEPLER_MAX_GROUPS], *vs[4 * KEPLER_MAX_GROUPS];
-    double mus[4 * KEPLER_MAX_GROUPS], *dxs[4 * KEPLER_MAX_GROUPS], *dvs[4 * KEPLER_MAX_GROUPS],
-        spare[6];
+    const size_t m = n - base < chunk ? n - base : chunk;
     int done[4 * KEPLER_MAX_GROUPS];
-    for (size_t j = 0; j < padded; ++j) {
-      const size_t i = base + (j < m ? j : m - 1); /* a short last group repeats its last orbit */
-      mus[j] = mu[i];
-      xs[j] = x + 3 * i;
-      vs[j] = v + 3 * i;
-      dxs[j] = j < m ? dx + 3 * i : spare;
-      dvs[j] = j < m ? dv + 3 * i : spare + 3;
-    }
-    short_path(padded / w, mus, dt, xs, vs, dxs, dvs, done);
+    short_path(m, mu + base, dt, x + 3 * base, v + 3 * base, dx + 3 * base, dv + 3 * base, done);
     for (size_t j = 0; j < m; ++j) {
       if (done[j]) continue;
-      gm_status st = gm_kepler_drift(mus[j], dt, xs[j], vs[j], dxs[j], dvs[j]);
+      const size_t i = base + j;
+      gm_status st = gm_kepler_drift(mu[i], dt, x + 3 * i, v + 3 * i, dx + 3 * i, dv + 3 * i);
       if (st != GM_OK) return st;
     }
   }

@@ -19,26 +19,30 @@ static inline int lane_ok(vd mu, vd t, vd r0, vd eta, vd beta, vd s0) {
                (beta * s0 * s0 < SHORT_Z));
 }
 
-/* Short drifts of ng ≤ KEPLER_MAX_GROUPS groups of VW orbits (group i, lane j: mu[VW i + j],
- * x0[VW i + j], v0[VW i + j] → dx[VW i + j], dv[VW i + j]) by dt. Sets done[VW i + j] to whether
- * that drift was done (the others' outputs are untouched). The work goes phase by phase over
- * all groups: each phase is a latency chain (square root and division, the Horner series, the
- * Householder division, the Newton division), so the groups of one phase run side by side; a
- * group at a time was measured slower than scalar code (latency-bound). */
-void KEPLER_SHORT(size_t np, const double *mu, double dt, const double *const *x0,
-                        const double *const *v0, double *const *dx, double *const *dv,
-                        int *done) {
-  vd X[KEPLER_MAX_GROUPS][3], V[KEPLER_MAX_GROUPS][3], m[KEPLER_MAX_GROUPS], r0[KEPLER_MAX_GROUPS], eta[KEPLER_MAX_GROUPS],
-      beta[KEPLER_MAX_GROUPS], zeta[KEPLER_MAX_GROUPS], ir[KEPLER_MAX_GROUPS], s0[KEPLER_MAX_GROUPS], d[KEPLER_MAX_GROUPS],
-      g[KEPLER_MAX_GROUPS][4];
+/* Short drifts of count ≤ VW·KEPLER_MAX_GROUPS orbits by dt: orbit k has μ = mu[k] and starts
+ * at x + 3k, v + 3k; its increments go to dx + 3k, dv + 3k, and done[k] says whether it was
+ * done (the others' outputs are untouched). Lanes past count repeat the last orbit. The work
+ * goes phase by phase over all groups of VW orbits: each phase is a latency chain (square root
+ * and division, the series, the Householder division, the Newton division), so the groups of
+ * one phase run side by side; a group at a time was measured slower than scalar code. */
+void KEPLER_SHORT(size_t count, const double *mu, double dt, const double *x, const double *v,
+                  double *dx, double *dv, int *done) {
+  vd X[KEPLER_MAX_GROUPS][3], V[KEPLER_MAX_GROUPS][3], m[KEPLER_MAX_GROUPS],
+      r0[KEPLER_MAX_GROUPS], eta[KEPLER_MAX_GROUPS], beta[KEPLER_MAX_GROUPS],
+      zeta[KEPLER_MAX_GROUPS], ir[KEPLER_MAX_GROUPS], s0[KEPLER_MAX_GROUPS],
+      d[KEPLER_MAX_GROUPS], g[KEPLER_MAX_GROUPS][4];
+  if (count == 0 || count > VW * KEPLER_MAX_GROUPS) return; /* outside the contract */
   const vd t = vd_splat(dt), one = vd_splat(1.0);
+  const size_t np = (count + VW - 1) / VW;
   int ok[KEPLER_MAX_GROUPS], any = 0;
   for (size_t i = 0; i < np; ++i) { /* r0, η, β, ζ, 1/r0 and the start */
+    size_t k[VW];
+    for (int j = 0; j < VW; ++j) k[j] = VW * i + j < count ? VW * i + j : count - 1;
     for (int c = 0; c < 3; ++c) {
-      X[i][c] = vd_gather(x0 + VW * i, c);
-      V[i][c] = vd_gather(v0 + VW * i, c);
+      X[i][c] = vd_gather(x, k, c);
+      V[i][c] = vd_gather(v, k, c);
     }
-    m[i] = vd_load(mu + VW * i);
+    m[i] = vd_pick(mu, k);
     r0[i] = vd_sqrt(X[i][0] * X[i][0] + X[i][1] * X[i][1] + X[i][2] * X[i][2]);
     eta[i] = X[i][0] * V[i][0] + X[i][1] * V[i][1] + X[i][2] * V[i][2];
     beta[i] = 2.0 * m[i] / r0[i] - (V[i][0] * V[i][0] + V[i][1] * V[i][1] + V[i][2] * V[i][2]);
@@ -51,7 +55,7 @@ void KEPLER_SHORT(size_t np, const double *mu, double dt, const double *const *x
     ok[i] = lane_ok(m[i], t, r0[i], eta[i], beta[i], s0[i]);
     any |= ok[i];
   }
-  for (size_t i = 0; i < VW * np; ++i) done[i] = 0;
+  for (size_t i = 0; i < count; ++i) done[i] = 0;
   if (!any) return;
   for (size_t i = 0; i < np; ++i) { /* G at s0 and Householder's fourth-order step */
     /* c2 = Σ_{j<6} y^j/(2j+2)!, c3 = Σ_{j<6} y^j/(2j+3)!, y = −β s0², by Estrin's scheme (pairs of
@@ -99,11 +103,11 @@ void KEPLER_SHORT(size_t np, const double *mu, double dt, const double *const *x
       DV[c] = fdot * X[i][c] + gdot_1 * V[i][c];
     }
     ok[i] &= lanes(vd_finite(DX[0] + DX[1] + DX[2] + DV[0] + DV[1] + DV[2]));
-    for (int j = 0; j < VW; ++j) {
+    for (int j = 0; j < VW && VW * i + j < count; ++j) {
       if (!(ok[i] >> j & 1)) continue;
       for (int c = 0; c < 3; ++c) {
-        dx[VW * i + j][c] = DX[c][j];
-        dv[VW * i + j][c] = DV[c][j];
+        dx[3 * (VW * i + j) + c] = DX[c][j];
+        dv[3 * (VW * i + j) + c] = DV[c][j];
       }
       done[VW * i + j] = 1;
     }

@@ -29,22 +29,22 @@ static inline vd vd_splat(double x) {
   return r;
 }
 
-/* (p[0][c], …, p[VW−1][c]) built in registers: an element-by-element build goes through the
- * stack, and the vector load that follows waits for the stores (measured: a third of a
- * drift's time). */
-static inline vd vd_gather(const double *const *p, int c) {
+/* (q[3 k_0 + c], …, q[3 k_{VW−1} + c]) and (v[k_0], …) built in registers: an element-by-element
+ * build goes through the stack, and the vector load that follows waits for the stores
+ * (measured: a third of a drift's time). */
+static inline vd vd_gather(const double *q, const size_t *k, int c) {
 #if VW == 4
-  return (vd){p[0][c], p[1][c], p[2][c], p[3][c]};
+  return (vd){q[3 * k[0] + c], q[3 * k[1] + c], q[3 * k[2] + c], q[3 * k[3] + c]};
 #else
-  return (vd){p[0][c], p[1][c]};
+  return (vd){q[3 * k[0] + c], q[3 * k[1] + c]};
 #endif
 }
 
-static inline vd vd_load(const double *p) {
+static inline vd vd_pick(const double *v, const size_t *k) {
 #if VW == 4
-  return (vd){p[0], p[1], p[2], p[3]};
+  return (vd){v[k[0]], v[k[1]], v[k[2]], v[k[3]]};
 #else
-  return (vd){p[0], p[1]};
+  return (vd){v[k[0]], v[k[1]]};
 #endif
 }
 
