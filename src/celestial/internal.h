@@ -24,14 +24,15 @@ extern const double gm_inverse_factorial[26];
 /* The vector kernels (lanes.h) at 2 and 4 lanes (lanes2.c, lanes4.c). The short path of the
  * drift for count ≤ VW KEPLER_MAX_GROUPS orbits, VW = 2 or 4 (kepler_short.h; done[k]: whether
  * orbit k's drift was made, else it needs the iteration). The kick's Newtonian accelerations
- * from positions in separate x, y, z arrays of np entries (np a multiple of 4, np ≥ n), and
+ * from positions in separate x, y, z arrays of np entries (np a multiple of 4, np ≥ n; acc:
+ * 3 np of scratch), and
  * its Kepler terms μ_k x_k/|x_k|³ (row_sums.h; 1 when a distance is zero). */
 #define KEPLER_MAX_GROUPS 8
 typedef void gm_kepler_short_fn(size_t count, const double *mu, double dt, const double *x,
                                 const double *v, double *dx, double *dv, int *done);
 gm_kepler_short_fn gm_kepler_short2, gm_kepler_short4;
 typedef int gm_row_sums_fn(size_t n, size_t np, const double *x, const double *y,
-                           const double *z, const double *m, double G, double *a);
+                           const double *z, const double *m, double G, double *a, double *acc);
 gm_row_sums_fn gm_row_sums2, gm_row_sums4;
 typedef int gm_central_terms_fn(size_t count, const double *x, const double *y, const double *z,
                                 const double *mu, double *out);
@@ -41,8 +42,9 @@ gm_central_terms_fn gm_central_terms2, gm_central_terms4;
  * kernels), else 2. Results are bitwise the same for both. */
 int gm_lane_width(void);
 static inline int gm_row_sums(size_t n, size_t np, const double *x, const double *y,
-                              const double *z, const double *m, double G, double *a) {
-  return (gm_lane_width() == 4 ? gm_row_sums4 : gm_row_sums2)(n, np, x, y, z, m, G, a);
+                              const double *z, const double *m, double G, double *a,
+                              double *acc) {
+  return (gm_lane_width() == 4 ? gm_row_sums4 : gm_row_sums2)(n, np, x, y, z, m, G, a, acc);
 }
 static inline int gm_central_terms(size_t count, const double *x, const double *y,
                                    const double *z, const double *mu, double *out) {

@@ -50,7 +50,7 @@ typedef struct {
   double *Qd, *Vd;           /* the increments of a drift */
   double *Qs, *As;           /* SABAC: perturbed positions, the acceleration at Q */
   size_t np;                 /* n rounded up to 4 */
-  double *soa;               /* 8 np: barycentric x, y, z, masses; planets' x, y, z, μ or m */
+  double *soa; /* 11 np: barycentric x, y, z, masses; planets' x, y, z, μ or m; 3 np scratch */
   double pending, pending_save; /* Kepler drift time owed by the last step (see internal_step) */
   int loaded;          /* Q, V hold the state of it->y (through C⁻¹) */
   double h_loaded;     /* the step the corrector of the loaded state was made for */
@@ -104,7 +104,7 @@ static gm_status init(gm_integrator *it) {
     if ((*arrays[k] = calloc(3 * n, sizeof(double))) == NULL) return GM_ENOMEM;
   w->m = malloc(7 * n * sizeof(double));
   w->np = (n + 3) / 4 * 4;
-  w->soa = calloc(8 * w->np, sizeof(double)); /* padding stays 0 */
+  w->soa = calloc(11 * w->np, sizeof(double)); /* padding stays 0 */
   if (w->m == NULL || w->soa == NULL) return GM_ENOMEM;
   w->eta = w->m + n;
   w->mu = w->m + 2 * n;
@@ -201,7 +201,7 @@ static gm_status newtonian_acceleration(gm_integrator *it, const double *Q) {
   }
   int coincide;
   if (w->coordinates == GM_COORDINATES_DEMOCRATIC_HELIOCENTRIC) {
-    coincide = gm_row_sums(n - 1, np, px, py, pz, pk, w->sys->G, acc + 3);
+    coincide = gm_row_sums(n - 1, np, px, py, pz, pk, w->sys->G, acc + 3, pk + np);
   } else {
     double R[3] = {0, 0, 0}; /* as in barycentric_positions */
     for (size_t i = n - 1; i >= 1; --i) {
@@ -214,7 +214,7 @@ static gm_status newtonian_acceleration(gm_integrator *it, const double *Q) {
     }
     bx[0] = R[0], by[0] = R[1], bz[0] = R[2];
     coincide = gm_central_terms(n - 1, px, py, pz, pk, kepler) ||
-               gm_row_sums(n, np, bx, by, bz, bm, w->sys->G, a);
+               gm_row_sums(n, np, bx, by, bz, bm, w->sys->G, a, pk + np);
     double S[3]; /* Σ_{j<i} m_j a_j */
     for (int k = 0; k < 3; ++k) S[k] = w->m[0] * a[k];
     for (size_t i = 1; i < n; ++i)

@@ -292,8 +292,8 @@ Test(celestial, newtonian_sums) {
   for (size_t t = 0; t < sizeof sizes / sizeof sizes[0]; ++t) {
     const size_t n = sizes[t], np = (n + 3) / 4 * 4;
     double *x = malloc(5 * np * sizeof *x), *y = x + np, *z = y + np, *m = z + np, *mu = m + np;
-    double *a = malloc(3 * n * sizeof *a), *a2 = malloc(3 * n * sizeof *a2);
-    cr_assert(x && a && a2);
+    double *a = malloc(3 * n * sizeof *a), *a2 = malloc(3 * n * sizeof *a2), *acc = malloc(3 * np * sizeof *acc);
+    cr_assert(x && a && a2 && acc);
     for (size_t i = 0; i < np; ++i) {
       m[i] = i < n ? (i == 0 ? 1.0 : 1e-3 * (0.5 + rand() / (double)RAND_MAX)) : NAN;
       mu[i] = i < n ? 0.5 + rand() / (double)RAND_MAX : NAN;
@@ -301,7 +301,7 @@ Test(celestial, newtonian_sums) {
       y[i] = i < n ? 20.0 * rand() / (double)RAND_MAX - 10.0 : (i == n ? y[0] : NAN);
       z[i] = i < n ? 20.0 * rand() / (double)RAND_MAX - 10.0 : 0.0;
     }
-    cr_assert_eq(gm_row_sums(n, np, x, y, z, m, 0.7, a), 0);
+    cr_assert_eq(gm_row_sums(n, np, x, y, z, m, 0.7, a, acc), 0);
     for (size_t i = 0; i < n; ++i)
       for (int c = 0; c < 3; ++c) {
         long double sum = 0, size = 0;
@@ -325,15 +325,15 @@ Test(celestial, newtonian_sums) {
                                                       fabsl(mu[i] * c[k] / (s * sqrtl(s)))));
     }
     if (gm_lane_width() == 4) {
-      cr_assert_eq(gm_row_sums2(n, np, x, y, z, m, 0.7, a2), 0);
-      cr_assert_eq(gm_row_sums4(n, np, x, y, z, m, 0.7, a), 0);
+      cr_assert_eq(gm_row_sums2(n, np, x, y, z, m, 0.7, a2, acc), 0);
+      cr_assert_eq(gm_row_sums4(n, np, x, y, z, m, 0.7, a, acc), 0);
       cr_expect(memcmp(a, a2, 3 * n * sizeof *a) == 0, "row sums differ between widths, n = %zu", n);
     }
     x[n - 1] = x[0], y[n - 1] = y[0], z[n - 1] = z[0];
-    cr_expect_eq(gm_row_sums(n, np, x, y, z, m, 0.7, a), 1, "coinciding bodies, n = %zu", n);
+    cr_expect_eq(gm_row_sums(n, np, x, y, z, m, 0.7, a, acc), 1, "coinciding bodies, n = %zu", n);
     x[0] = y[0] = z[0] = 0.0;
     cr_expect_eq(gm_central_terms(n, x, y, z, mu, a), 1, "zero distance, n = %zu", n);
-    free(x), free(a), free(a2);
+    free(x), free(a), free(a2), free(acc);
   }
   printf("newtonian sums: worst error %.2g relative to the sum of |terms|, Kepler terms %.2g\n",
          worst, worst_central);
