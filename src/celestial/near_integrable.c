@@ -50,6 +50,9 @@ typedef struct {
   double *Qd, *Vd;           /* the increments of a drift */
   double *Qs, *As;           /* SABAC: perturbed positions, the acceleration at Q */
   size_t np;                 /* n rounded up to 4 */
+  int width;                 /* lanes of the vector kernels on this CPU (gm_lane_width) */
+  gm_row_sums_fn *row_sums;  /* the kernels of that width */
+  gm_central_terms_fn *central_terms;
   double *soa; /* 11 np: barycentric x, y, z, masses; planets' x, y, z, μ or m; 3 np scratch */
   double pending, pending_save; /* Kepler drift time owed by the last step (see internal_step) */
   int loaded;          /* Q, V hold the state of it->y (through C⁻¹) */
@@ -104,6 +107,9 @@ static gm_status init(gm_integrator *it) {
     if ((*arrays[k] = calloc(3 * n, sizeof(double))) == NULL) return GM_ENOMEM;
   w->m = malloc(7 * n * sizeof(double));
   w->np = (n + 3) / 4 * 4;
+  w->width = gm_lane_width();
+  w->row_sums = w->width == 4 ? gm_row_sums4 : gm_row_sums2;
+  w->central_terms = w->width == 4 ? gm_central_terms4 : gm_central_terms2;
   w->soa = calloc(11 * w->np, sizeof(double)); /* padding stays 0 */
   if (w->m == NULL || w->soa == NULL) return GM_ENOMEM;
   w->eta = w->m + n;
@@ -155,6 +161,16 @@ static inline void add(double *x, double *c, double d) {
   *x = b;
 }
 
+/* x[i] += s·d[i] (s = 1: d itself), i < k, compensated when c != NULL: the uncompensated loop
+ * is a plain one the compiler can vectorize. */
+static void add_all(size_t k, double *x, double *c, double s, const double *d) {
+  if (c == NULL) {
+    for (size_t i = 0; i < k; ++i) x[i] += s * d[i];
+    return;
+  }
+  for (size_t i = 0; i < k; ++i) add(&x[i], &c[i], s * d[i]);
+}
+
 /* ---- the two flows ------------------------------------------------------------------------ */
 
 static gm_status drift(gm_integrator *it, double *Q, double *V, double *cQ, double *cV,
@@ -163,14 +179,13 @@ static gm_status drift(gm_integrator *it, double *Q, double *V, double *cQ, doub
   for (int k = 0; k < 3; ++k) add(&Q[k], cQ ? &cQ[k] : NULL, dt * V[k]);
   const size_t n = w->n;
   double *dx = w->Qd, *dv = w->Vd;
-  gm_status st = gm_kepler_drift_many(n - 1, w->mu + 1, dt, Q + 3, V + 3, dx, dv);
+  gm_status st =
+      gm_kepler_drift_many_width(w->width, n - 1, w->mu + 1, dt, Q + 3, V + 3, dx, dv);
   if (st != GM_OK)
     return gm_fail(it->errmsg, sizeof it->errmsg, st,
                    "Kepler drift over %g failed at t = %.17g (%s)", dt, it->t, gm_strerror(st));
-  for (size_t i = 0; i < 3 * (n - 1); ++i) {
-    add(&Q[3 + i], cQ ? &cQ[3 + i] : NULL, dx[i]);
-    add(&V[3 + i], cV ? &cV[3 + i] : NULL, dv[i]);
-  }
+  add_all(3 * (n - 1), Q + 3, cQ ? cQ + 3 : NULL, 1.0, dx);
+  add_all(3 * (n - 1), V + 3, cV ? cV + 3 : NULL, 1.0, dv);
   w->force_valid = 0;
   return GM_OK;
 }
@@ -201,7 +216,7 @@ static gm_status newtonian_acceleration(gm_integrator *it, const double *Q) {
   }
   int coincide;
   if (w->coordinates == GM_COORDINATES_DEMOCRATIC_HELIOCENTRIC) {
-    coincide = gm_row_sums(n - 1, np, px, py, pz, pk, w->sys->G, acc + 3, pk + np);
+    coincide = w->row_sums(n - 1, np, px, py, pz, pk, w->sys->G, acc + 3, pk + np);
   } else {
     double R[3] = {0, 0, 0}; /* as in barycentric_positions */
     for (size_t i = n - 1; i >= 1; --i) {
@@ -213,8 +228,8 @@ static gm_status newtonian_acceleration(gm_integrator *it, const double *Q) {
       bz[i] = Q[3 * i + 2] + R[2];
     }
     bx[0] = R[0], by[0] = R[1], bz[0] = R[2];
-    coincide = gm_central_terms(n - 1, px, py, pz, pk, kepler) ||
-               gm_row_sums(n, np, bx, by, bz, bm, w->sys->G, a, pk + np);
+    coincide = w->central_terms(n - 1, px, py, pz, pk, kepler) ||
+               w->row_sums(n, np, bx, by, bz, bm, w->sys->G, a, pk + np);
     double S[3]; /* Σ_{j<i} m_j a_j */
     for (int k = 0; k < 3; ++k) S[k] = w->m[0] * a[k];
     for (size_t i = 1; i < n; ++i)
@@ -310,8 +325,7 @@ static gm_status kick(gm_integrator *it, double *Q, double *V, double *cQ, doubl
     gm_status st = interaction_acceleration(it, Q);
     if (st != GM_OK) return st;
   }
-  for (size_t i = 1; i < w->n; ++i)
-    for (int k = 0; k < 3; ++k) add(&V[3 * i + k], cV ? &cV[3 * i + k] : NULL, dt * w->accel[3 * i + k]);
+  add_all(3 * (w->n - 1), V + 3, cV ? cV + 3 : NULL, dt, w->accel + 3);
   if (dh) jump(w, Q, V, cQ, 0.5 * dt);
   w->force_valid = !dh; /* the acceleration still belongs to Q */
   return GM_OK;
@@ -484,8 +498,7 @@ static gm_status internal_step(gm_integrator *it, double h) {
     if (st != GM_OK) return st;
   }
   if (w->fsal && w->force_valid) { /* the first kick's acceleration is the last one's */
-    for (size_t i = 3; i < 3 * w->n; ++i)
-      add(&w->V[i], cV ? &cV[i] : NULL, w->ops[0].coef * h * w->accel[i]);
+    add_all(3 * (w->n - 1), w->V + 3, cV ? cV + 3 : NULL, w->ops[0].coef * h, w->accel + 3);
     k = 1;
   }
   const int owes = end > 1 && !w->ops[end - 1].kick;
