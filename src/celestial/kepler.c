@@ -202,7 +202,7 @@ gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double
   double lo, hi, s0;
   { /* the short path, as a group of copies of itself */
     int done;
-    (gm_lane_width() == 4 ? gm_kepler_short4 : gm_kepler_short2)(1, &mu, dt, x0, v0, dx, dv,
+    (gm_lane_width() == 4 ? gm_kepler_short4 : gm_kepler_short2)(1, &mu, dt, x0, v0, dx, dv, 0,
                                                                   &done);
     if (done) return GM_OK;
   }
@@ -260,12 +260,32 @@ gm_status gm_kepler_drift_many_width(int width, size_t n, const double *mu, doub
   for (size_t base = 0; base < n; base += chunk) {
     const size_t m = n - base < chunk ? n - base : chunk;
     int done[4 * KEPLER_MAX_GROUPS];
-    short_path(m, mu + base, dt, x + 3 * base, v + 3 * base, dx + 3 * base, dv + 3 * base, done);
+    short_path(m, mu + base, dt, x + 3 * base, v + 3 * base, dx + 3 * base, dv + 3 * base, 0,
+               done);
     for (size_t j = 0; j < m; ++j) {
       if (done[j]) continue;
       const size_t i = base + j;
       gm_status st = gm_kepler_drift(mu[i], dt, x + 3 * i, v + 3 * i, dx + 3 * i, dv + 3 * i);
       if (st != GM_OK) return st;
+    }
+  }
+  return GM_OK;
+}
+
+gm_status gm_kepler_drift_many_apply(int width, size_t n, const double *mu, double dt, double *x,
+                                     double *v) {
+  gm_kepler_short_fn *short_path = width == 4 ? gm_kepler_short4 : gm_kepler_short2;
+  const size_t chunk = (width == 4 ? 4 : 2) * KEPLER_MAX_GROUPS;
+  for (size_t base = 0; base < n; base += chunk) {
+    const size_t m = n - base < chunk ? n - base : chunk;
+    int done[4 * KEPLER_MAX_GROUPS];
+    short_path(m, mu + base, dt, x + 3 * base, v + 3 * base, x + 3 * base, v + 3 * base, 1, done);
+    for (size_t j = 0; j < m; ++j) {
+      if (done[j]) continue;
+      double *xi = x + 3 * (base + j), *vi = v + 3 * (base + j), dx[3], dv[3];
+      gm_status st = gm_kepler_drift(mu[base + j], dt, xi, vi, dx, dv);
+      if (st != GM_OK) return st;
+      for (int c = 0; c < 3; ++c) xi[c] += dx[c], vi[c] += dv[c];
     }
   }
   return GM_OK;

@@ -20,13 +20,14 @@ static inline int lane_ok(vd mu, vd t, vd r0, vd eta, vd beta, vd s0) {
 }
 
 /* Short drifts of count ≤ VW·KEPLER_MAX_GROUPS orbits by dt: orbit k has μ = mu[k] and starts
- * at x + 3k, v + 3k; its increments go to dx + 3k, dv + 3k, and done[k] says whether it was
- * done (the others' outputs are untouched). Lanes past count repeat the last orbit. The work
+ * at x + 3k, v + 3k; its increments go to dx + 3k, dv + 3k (with apply: the end state x + dx,
+ * v + dv, and dx, dv may then be x, v), and done[k] says whether it was done (the others'
+ * outputs are untouched). Lanes past count repeat the last orbit. The work
  * goes phase by phase over all groups of VW orbits: each phase is a latency chain (square root
  * and division, the series, the Householder division, the Newton division), so the groups of
  * one phase run side by side; a group at a time was measured slower than scalar code. */
 void KEPLER_SHORT(size_t count, const double *mu, double dt, const double *x, const double *v,
-                  double *dx, double *dv, int *done) {
+                  double *dx, double *dv, int apply, int *done) {
   vd X[KEPLER_MAX_GROUPS][3], V[KEPLER_MAX_GROUPS][3], m[KEPLER_MAX_GROUPS],
       r0[KEPLER_MAX_GROUPS], eta[KEPLER_MAX_GROUPS], beta[KEPLER_MAX_GROUPS],
       zeta[KEPLER_MAX_GROUPS], ir[KEPLER_MAX_GROUPS], s0[KEPLER_MAX_GROUPS],
@@ -103,6 +104,11 @@ void KEPLER_SHORT(size_t count, const double *mu, double dt, const double *x, co
       DV[c] = fdot * X[i][c] + gdot_1 * V[i][c];
     }
     ok[i] &= lanes(vd_finite(DX[0] + DX[1] + DX[2] + DV[0] + DV[1] + DV[2]));
+    if (apply) /* x + dx, rounded as the caller's own sum would be */
+      for (int c = 0; c < 3; ++c) {
+        DX[c] = X[i][c] + DX[c];
+        DV[c] = V[i][c] + DV[c];
+      }
     for (int j = 0; j < VW && VW * i + j < count; ++j) {
       if (!(ok[i] >> j & 1)) continue;
       for (int c = 0; c < 3; ++c) {

@@ -179,13 +179,17 @@ static gm_status drift(gm_integrator *it, double *Q, double *V, double *cQ, doub
   for (int k = 0; k < 3; ++k) add(&Q[k], cQ ? &cQ[k] : NULL, dt * V[k]);
   const size_t n = w->n;
   double *dx = w->Qd, *dv = w->Vd;
-  gm_status st =
-      gm_kepler_drift_many_width(w->width, n - 1, w->mu + 1, dt, Q + 3, V + 3, dx, dv);
+  gm_status st = cQ == NULL && cV == NULL /* the kernel adds the increments itself */
+                     ? gm_kepler_drift_many_apply(w->width, n - 1, w->mu + 1, dt, Q + 3, V + 3)
+                     : gm_kepler_drift_many_width(w->width, n - 1, w->mu + 1, dt, Q + 3, V + 3,
+                                                  dx, dv);
   if (st != GM_OK)
     return gm_fail(it->errmsg, sizeof it->errmsg, st,
                    "Kepler drift over %g failed at t = %.17g (%s)", dt, it->t, gm_strerror(st));
-  add_all(3 * (n - 1), Q + 3, cQ ? cQ + 3 : NULL, 1.0, dx);
-  add_all(3 * (n - 1), V + 3, cV ? cV + 3 : NULL, 1.0, dv);
+  if (cQ != NULL || cV != NULL) {
+    add_all(3 * (n - 1), Q + 3, cQ ? cQ + 3 : NULL, 1.0, dx);
+    add_all(3 * (n - 1), V + 3, cV ? cV + 3 : NULL, 1.0, dv);
+  }
   w->force_valid = 0;
   return GM_OK;
 }

@@ -401,6 +401,14 @@ Test(kepler_drift, many_orbits_as_single_drifts) {
                   v + 3 * j);
     }
     cr_assert_eq(gm_kepler_drift_many(N, mu, dt, x, v, dx, dv), GM_OK);
+    { /* applied in place: bitwise x + dx, v + dv */
+      double xa[3 * N], va[3 * N];
+      memcpy(xa, x, sizeof xa);
+      memcpy(va, v, sizeof va);
+      cr_assert_eq(gm_kepler_drift_many_apply(gm_lane_width(), N, mu, dt, xa, va), GM_OK);
+      for (int i = 0; i < 3 * N; ++i)
+        cr_assert(xa[i] == x[i] + dx[i] && va[i] == v[i] + dv[i], "apply differs, trial %d", trial);
+    }
     if (gm_lane_width() == 4) { /* the four-lane kernels give bitwise the two-lane drifts */
       double dx2[3 * N], dv2[3 * N];
       cr_assert_eq(gm_kepler_drift_many_width(2, N, mu, dt, x, v, dx2, dv2), GM_OK);
