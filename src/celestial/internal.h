@@ -29,7 +29,8 @@ extern const double gm_inverse_factorial[26];
  * its Kepler terms μ_k x_k/|x_k|³ (row_sums.h; 1 when a distance is zero). */
 #define KEPLER_MAX_GROUPS 8
 typedef void gm_kepler_short_fn(size_t count, const double *mu, double dt, const double *x,
-                                const double *v, double *dx, double *dv, int apply, int *done);
+                                const double *v, double *dx, double *dv, int apply,
+                                double *ir, int *done);
 gm_kepler_short_fn gm_kepler_short2, gm_kepler_short4;
 typedef int gm_row_sums_fn(size_t n, size_t np, const double *x, const double *y,
                            const double *z, const double *m, double G, double *a, double *acc);
@@ -55,9 +56,11 @@ static inline int gm_central_terms(size_t count, const double *x, const double *
 gm_status gm_kepler_drift_many_width(int width, size_t n, const double *mu, double dt,
                                      const double *x, const double *v, double *dx, double *dv);
 /* The same drifts applied in place: x += dx, v += dv (each sum rounded once, as the caller's
- * own would be), for runs without compensated summation. */
+ * own would be), for runs without compensated summation; 1/|x| at the end into ir[k] unless
+ * ir is NULL (the end point's distance, which the drift has, to a few ulp: the Kepler terms
+ * of the next kick). */
 gm_status gm_kepler_drift_many_apply(int width, size_t n, const double *mu, double dt, double *x,
-                                     double *v);
+                                     double *v, double *ir);
 
 /* gm_kepler_drift for n orbits (x, v, dx, dv: n 3-vectors; mu: n values) by the same dt, their
  * iterations interleaved (kepler.c). Same results as n calls. */

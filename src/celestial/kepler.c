@@ -203,7 +203,7 @@ gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double
   { /* the short path, as a group of copies of itself */
     int done;
     (gm_lane_width() == 4 ? gm_kepler_short4 : gm_kepler_short2)(1, &mu, dt, x0, v0, dx, dv, 0,
-                                                                  &done);
+                                                                  NULL, &done);
     if (done) return GM_OK;
   }
   /* s(t) = t/r0 − η t²/(2 r0³) + (η²/(2 r0⁵) − ζ/(6 r0⁴)) t³ + O(t⁴), the inverse of
@@ -261,7 +261,7 @@ gm_status gm_kepler_drift_many_width(int width, size_t n, const double *mu, doub
     const size_t m = n - base < chunk ? n - base : chunk;
     int done[4 * KEPLER_MAX_GROUPS];
     short_path(m, mu + base, dt, x + 3 * base, v + 3 * base, dx + 3 * base, dv + 3 * base, 0,
-               done);
+               NULL, done);
     for (size_t j = 0; j < m; ++j) {
       if (done[j]) continue;
       const size_t i = base + j;
@@ -273,19 +273,21 @@ gm_status gm_kepler_drift_many_width(int width, size_t n, const double *mu, doub
 }
 
 gm_status gm_kepler_drift_many_apply(int width, size_t n, const double *mu, double dt, double *x,
-                                     double *v) {
+                                     double *v, double *ir) {
   gm_kepler_short_fn *short_path = width == 4 ? gm_kepler_short4 : gm_kepler_short2;
   const size_t chunk = (width == 4 ? 4 : 2) * KEPLER_MAX_GROUPS;
   for (size_t base = 0; base < n; base += chunk) {
     const size_t m = n - base < chunk ? n - base : chunk;
     int done[4 * KEPLER_MAX_GROUPS];
-    short_path(m, mu + base, dt, x + 3 * base, v + 3 * base, x + 3 * base, v + 3 * base, 1, done);
+    short_path(m, mu + base, dt, x + 3 * base, v + 3 * base, x + 3 * base, v + 3 * base, 1,
+               ir != NULL ? ir + base : NULL, done);
     for (size_t j = 0; j < m; ++j) {
       if (done[j]) continue;
       double *xi = x + 3 * (base + j), *vi = v + 3 * (base + j), dx[3], dv[3];
       gm_status st = gm_kepler_drift(mu[base + j], dt, xi, vi, dx, dv);
       if (st != GM_OK) return st;
       for (int c = 0; c < 3; ++c) xi[c] += dx[c], vi[c] += dv[c];
+      if (ir != NULL) ir[base + j] = 1.0 / sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
     }
   }
   return GM_OK;

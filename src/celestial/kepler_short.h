@@ -21,13 +21,13 @@ static inline int lane_ok(vd mu, vd t, vd r0, vd eta, vd beta, vd s0) {
 
 /* Short drifts of count ≤ VW·KEPLER_MAX_GROUPS orbits by dt: orbit k has μ = mu[k] and starts
  * at x + 3k, v + 3k; its increments go to dx + 3k, dv + 3k (with apply: the end state x + dx,
- * v + dv, and dx, dv may then be x, v), and done[k] says whether it was done (the others'
- * outputs are untouched). Lanes past count repeat the last orbit. The work
+ * v + dv, and dx, dv may then be x, v), 1/|x(dt)| to ir[k] unless ir is NULL, and done[k]
+ * says whether it was done (the others' outputs are untouched). Lanes past count repeat the last orbit. The work
  * goes phase by phase over all groups of VW orbits: each phase is a latency chain (square root
  * and division, the series, the Householder division, the Newton division), so the groups of
  * one phase run side by side; a group at a time was measured slower than scalar code. */
 void KEPLER_SHORT(size_t count, const double *mu, double dt, const double *x, const double *v,
-                  double *dx, double *dv, int apply, int *done) {
+                  double *dx, double *dv, int apply, double *ir_out, int *done) {
   vd X[KEPLER_MAX_GROUPS][3], V[KEPLER_MAX_GROUPS][3], m[KEPLER_MAX_GROUPS],
       r0[KEPLER_MAX_GROUPS], eta[KEPLER_MAX_GROUPS], beta[KEPLER_MAX_GROUPS],
       zeta[KEPLER_MAX_GROUPS], ir[KEPLER_MAX_GROUPS], s0[KEPLER_MAX_GROUPS],
@@ -115,6 +115,7 @@ void KEPLER_SHORT(size_t count, const double *mu, double dt, const double *x, co
         dx[3 * (VW * i + j) + c] = DX[c][j];
         dv[3 * (VW * i + j) + c] = DV[c][j];
       }
+      if (ir_out != NULL) ir_out[VW * i + j] = ri[j];
       done[VW * i + j] = 1;
     }
   }
