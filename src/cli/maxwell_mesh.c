@@ -33,9 +33,10 @@ static const char usage[] =
     "  --energy FILE.csv  t, electric, magnetic, plain, leapfrog energy per sample\n"
     "  --probe X,Y[,Z]    record E_x there and print its harminv resonances in (0, --fmax]\n"
     "  --fmax F           (default 2)\n"
-    "  --vtu PREFIX       write PREFIX_0000.vtu .. at --snapshots times (E on edges, B on\n"
-    "                     faces)\n"
-    "  --snapshots N      (default 4)\n"
+    "  --vtu PREFIX       write PREFIX_0000.vtu .. (E on edges, B on faces) at N times\n"
+    "                     spread over the run, the last at its end, and PREFIX.pvd (ParaView\n"
+    "                     time series: the files with their times)\n"
+    "  --snapshots N      (default 4; 1: the final state only)\n"
     "  --exact-steps      AVI: every face exactly F x its limit (default: rounded down to\n"
     "                     power-of-two levels of the smallest step, faster per update)\n"
     "  --e5               seed 000 E5 on FILE.msh, a Gmsh box cavity refined near the walls\n"
@@ -56,43 +57,101 @@ static double rnd(uint64_t *z) {
   return (double)(x >> 11) / 9007199254740992.0 - 0.5;
 }
 
+int mm_guard_check(mm_guard *g, double t, double plain) {
+  if (!g->started) {
+    g->started = 1;
+    g->e0 = plain;
+    g->max_ratio = isfinite(plain) ? 1.0 : NAN;
+  }
+  const double ratio = g->e0 != 0.0 ? fabs(plain) / fabs(g->e0) : 0.0;
+  if (isnan(ratio) || ratio > g->max_ratio) g->max_ratio = ratio;
+  if (isfinite(plain) && ratio <= g->limit) return 0;
+  g->fired = 1;
+  if (isfinite(plain))
+    cli_error(g->command, "the run blew up at t = %.6g: the field energy is %.3g x its initial "
+              "value (the limit is %g; nothing here injects energy)%s", t, ratio, g->limit,
+              g->advice);
+  else
+    cli_error(g->command, "the run blew up at t = %.6g: the field energy is non-finite (%g x its "
+              "initial value)%s", t, ratio, g->advice);
+  return 1;
+}
+
+/* max(m, x) that keeps a NaN once seen (fmax drops it: a blown-up run would look clean) */
+static double max_nan(double m, double x) {
+  if (isnan(m)) return m;
+  return isnan(x) || x > m ? x : m;
+}
+
 typedef struct run_ctx {
   FILE *energy;
   const gm_complex *cx;
   const char *vtu;
   size_t snapshots, written;
+  double *snap_t;       /* snapshots: the time of each file written (for the .pvd) */
   double t_end, sample; /* sample: the observer's interval */
-  double e0, max_dev, gauss0, gauss_max;
+  double max_dev;
   double *Bsync;
+  mm_guard guard;
   int failed;
 } run_ctx;
+
+/* PREFIX_NNNN.vtu of the current fields, and PREFIX.pvd (ParaView's time series) rewritten
+ * whole so that it lists every file written so far with its time. */
+static int write_snapshot(run_ctx *c, const gm_mesh_maxwell *s) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s_%04zu.vtu", c->vtu, c->written);
+  gm_mesh_maxwell_sync_b(s, c->Bsync);
+  gm_vtu_field fields[2] = {{"E", 1, 1, gm_mesh_maxwell_e(s)}, {"B", 2, 1, c->Bsync}};
+  gm_error err = {{0}};
+  if (gm_vtu_write(path, c->cx, 2, fields, &err) != GM_OK) {
+    cli_error("maxwell mesh", "%s", err.message);
+    c->failed = 1;
+    return 1;
+  }
+  c->snap_t[c->written++] = gm_mesh_maxwell_time(s);
+  snprintf(path, sizeof path, "%s.pvd", c->vtu);
+  const char *slash = strrchr(c->vtu, '/'), *base = slash ? slash + 1 : c->vtu;
+  FILE *f = fopen(path, "w");
+  int bad = !f;
+  if (f) {
+    fputs("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
+          "  <Collection>\n", f);
+    for (size_t k = 0; k < c->written; ++k)
+      fprintf(f, "    <DataSet timestep=\"%.17g\" file=\"%s_%04zu.vtu\"/>\n", c->snap_t[k],
+              base, k);
+    fputs("  </Collection>\n</VTKFile>\n", f);
+    bad = ferror(f) != 0;
+    bad |= fclose(f) != 0;
+  }
+  if (bad) {
+    cli_error("maxwell mesh", "cannot write %s", path);
+    c->failed = 1;
+    return 1;
+  }
+  return 0;
+}
 
 static int observe(void *vctx, const gm_mesh_maxwell *s) {
   run_ctx *c = vctx;
   gm_mesh_maxwell_energy en;
   gm_mesh_maxwell_energy_get(s, &en);
   const double t = gm_mesh_maxwell_time(s);
-  if (c->e0 == 0.0) c->e0 = en.leapfrog;
-  const double dev = fabs(en.plain - c->e0) / c->e0;
-  c->max_dev = dev > c->max_dev ? dev : c->max_dev;
+  const int blew_up = mm_guard_check(&c->guard, t, en.plain);
+  c->max_dev = max_nan(c->max_dev, fabs(en.plain - c->guard.e0) / c->guard.e0);
+  if (blew_up) {
+    c->failed = 1;
+    return 1;
+  }
   if (c->energy)
     fprintf(c->energy, "%.10g,%.17g,%.17g,%.17g,%.17g\n", t, en.electric, en.magnetic, en.plain,
             en.leapfrog);
-  if (c->vtu && c->written < c->snapshots &&
-      t + 0.5 * c->sample >= c->t_end * (double)c->written /
-                                  (double)(c->snapshots > 1 ? c->snapshots - 1 : 1)) {
-    char path[4096];
-    snprintf(path, sizeof path, "%s_%04zu.vtu", c->vtu, c->written);
-    gm_mesh_maxwell_sync_b(s, c->Bsync);
-    gm_vtu_field fields[2] = {{"E", 1, 1, gm_mesh_maxwell_e(s)}, {"B", 2, 1, c->Bsync}};
-    gm_error err = {{0}};
-    if (gm_vtu_write(path, c->cx, 2, fields, &err) != GM_OK) {
-      cli_error("maxwell mesh", "%s", err.message);
-      c->failed = 1;
-      return 1;
-    }
-    ++c->written;
-  }
+  /* the last snapshot is left to the end of the run: the leapfrog stops at the last whole step
+     (short of --t-end), where no observation may fall */
+  if (c->vtu && c->written + 1 < c->snapshots &&
+      t + 0.5 * c->sample >= c->t_end * (double)c->written / (double)(c->snapshots - 1) &&
+      write_snapshot(c, s) != 0)
+    return 1;
   return 0;
 }
 
@@ -139,10 +198,11 @@ int cli_maxwell_mesh(int argc, char **argv) {
   if (!(fraction > 0.0 && fraction <= 1.0) ||
       !(courant > 0.0 && courant <= 1.0) || !(warp >= 0.0 && warp < 1.0) || !(ly > 0.0) ||
       !isfinite(ly) || samples == 0 || !(sample_dt > 0.0 && isfinite(sample_dt)) ||
-      !(t_compare > 0.0 && isfinite(t_compare)) || !(f_max > 0.0) || (dt != 0.0 && !(dt > 0.0 && isfinite(dt)))) {
+      !(t_compare > 0.0 && isfinite(t_compare)) || !(f_max > 0.0) || snapshots == 0 ||
+      (dt != 0.0 && !(dt > 0.0 && isfinite(dt)))) {
     cli_error("maxwell mesh", "bad option value (--t-end, --dt, --ly, --fmax > 0; --fraction, "
-                              "--courant in (0, 1]; --warp in [0, 1); --samples >= 1; --sample, "
-                              "--t-compare > 0)");
+                              "--courant in (0, 1]; --warp in [0, 1); --samples, --snapshots "
+                              ">= 1; --sample, --t-compare > 0)");
     return CLI_EXIT_USAGE;
   }
   gm_error err = {{0}};
@@ -192,7 +252,7 @@ int cli_maxwell_mesh(int argc, char **argv) {
   gm_complex *cx = NULL;
   gm_geometry *g = NULL;
   gm_mesh_maxwell *s = NULL;
-  double *E = NULL, *Bsync = NULL;
+  double *E = NULL, *Bsync = NULL, *snap_t = NULL;
   FILE *ef = NULL;
   status = CLI_EXIT_USAGE;
   if ((st = gm_mesh_complex(mesh, &cx, &err)) != GM_OK ||
@@ -215,7 +275,8 @@ int cli_maxwell_mesh(int argc, char **argv) {
   const size_t ne = gm_complex_count(cx, 1), nf = gm_complex_count(cx, 2);
   E = malloc(ne * sizeof(double));
   Bsync = malloc(nf * sizeof(double));
-  if (!E || !Bsync) { status = CLI_EXIT_FAILURE; cli_error("maxwell mesh", "out of memory"); goto done; }
+  snap_t = malloc((snapshots ? snapshots : 1) * sizeof(double));
+  if (!E || !Bsync || !snap_t) { status = CLI_EXIT_FAILURE; cli_error("maxwell mesh", "out of memory"); goto done; }
   uint64_t z = seed;
   for (size_t e = 0; e < ne; ++e) E[e] = rnd(&z);
   gm_mesh_maxwell_set_fields(s, E, NULL);
@@ -240,7 +301,17 @@ int cli_maxwell_mesh(int argc, char **argv) {
     goto done;
   }
   if (ef) fprintf(ef, "t,electric,magnetic,plain,leapfrog\n");
-  run_ctx rc = {ef, cx, vtu, snapshots, 0, t_end, avi ? sample : (double)every * step, 0, 0, 0, 0, Bsync, 0};
+  run_ctx rc = {ef, cx, vtu, snapshots, 0, snap_t, t_end, avi ? sample : (double)every * step, 0, Bsync,
+                {"maxwell mesh", avi ? MM_BLOWUP_RATIO : INFINITY, 0, 0.0, 0.0, 0, ""}, 0};
+  if (avi)
+    snprintf(rc.guard.advice, sizeof rc.guard.advice, "; the AVI has no stability bound for "
+             "neighbouring faces with different steps: use a smaller --fraction (now %g)",
+             fraction);
+  else if (allow && !whitney)
+    snprintf(rc.guard.advice, sizeof rc.guard.advice, "; the diagonal star has non-positive "
+             "entries on this mesh (--allow-negative-stars), which no step cures: use --whitney");
+  else
+    snprintf(rc.guard.advice, sizeof rc.guard.advice, "; use a smaller --courant or --dt");
   gm_mesh_maxwell_add_observer(s, avi ? 1 : every, observe, &rc);
   double *g0 = malloc(gm_complex_count(cx, 0) * sizeof(double));
   double *g1 = malloc(gm_complex_count(cx, 0) * sizeof(double));
@@ -249,12 +320,17 @@ int cli_maxwell_mesh(int argc, char **argv) {
   st = gm_mesh_maxwell_advance_to(s, t_end);
   status = CLI_EXIT_OK;
   if (st != GM_OK || rc.failed) {
-    if (!rc.failed) cli_error("maxwell mesh", "%s", gm_mesh_maxwell_errmsg(s));
+    if (!rc.failed && st == GM_EDOMAIN) /* non-finite between two observations */
+      cli_error("maxwell mesh", "the run blew up: %s%s", gm_mesh_maxwell_errmsg(s),
+                rc.guard.advice);
+    else if (!rc.failed) /* the observer printed why */
+      cli_error("maxwell mesh", "%s", gm_mesh_maxwell_errmsg(s));
     status = CLI_EXIT_FAILURE;
   }
+  if (status == CLI_EXIT_OK && vtu && write_snapshot(&rc, s) != 0) status = CLI_EXIT_FAILURE;
   gm_mesh_maxwell_gauss(s, g1);
   double gd = 0.0;
-  for (size_t v = 0; v < gm_complex_count(cx, 0); ++v) gd = fmax(gd, fabs(g1[v] - g0[v]));
+  for (size_t v = 0; v < gm_complex_count(cx, 0); ++v) gd = max_nan(gd, fabs(g1[v] - g0[v]));
   free(g0); free(g1);
   size_t fu, eu;
   gm_mesh_maxwell_update_counts(s, &fu, &eu);
@@ -275,8 +351,11 @@ int cli_maxwell_mesh(int argc, char **argv) {
   printf("\n");
   gm_mesh_maxwell_energy en;
   gm_mesh_maxwell_energy_get(s, &en);
-  printf("energy: start %.10g, end plain %.10g, leapfrog %.10g, max |plain - E0|/E0 %.3e\n",
-         rc.e0, en.plain, en.leapfrog, rc.max_dev);
+  char stops[64] = "the leapfrog stops only when non-finite";
+  if (avi) snprintf(stops, sizeof stops, "the AVI stops above %g", rc.guard.limit);
+  printf("energy: start %.10g, end plain %.10g, leapfrog %.10g, max |plain - E0|/E0 %.3e, max "
+         "plain/E0 %.4g (%s)\n", rc.guard.e0, en.plain, en.leapfrog, rc.max_dev,
+         rc.guard.max_ratio, stops);
   printf("invariants: max |div B| %.3e, max Gauss drift %.3e\n", gm_mesh_maxwell_div_b(s), gd);
   if (probe && status == CLI_EXIT_OK) {
     size_t n;
@@ -299,6 +378,7 @@ done:
   if (ef) fclose(ef);
   free(E);
   free(Bsync);
+  free(snap_t);
   gm_mesh_maxwell_free(s);
   gm_geometry_free(g);
   gm_complex_free(cx);

@@ -1,0 +1,117 @@
+/* geomint maxwell mesh: a run that blows up stops with exit 1 and says when and why (the AVI
+ * above 10 times its initial energy, the leapfrog when non-finite), its summary never reports
+ * clean invariants after a NaN, the last VTU snapshot is the final state and a ParaView .pvd
+ * lists the files with their times. */
+#include <criterion/criterion.h>
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli/cli_harness.h"
+
+TestSuite(cli_maxwell_mesh, .init = make_tmpdir, .fini = remove_tmpdir, .timeout = 300);
+
+#define CUBE GM_SOURCE_DIR "/tests/data/cube_v22.msh"
+
+static double number_after(const char *text, const char *key) {
+  const char *at = strstr(text, key);
+  cr_assert_not_null(at, "no '%s' in: %s", key, text);
+  return strtod(at + strlen(key), NULL);
+}
+
+static size_t count_substr(const char *text, const char *needle) {
+  size_t n = 0;
+  for (const char *p = strstr(text, needle); p; p = strstr(p + 1, needle)) ++n;
+  return n;
+}
+
+/* The AVI at its full local limits with distinct steps (coupling resonances between neighbouring
+ * faces): it grew the energy 4.2e4 times and exited 0; now it stops where the energy passes 10
+ * times its initial value. The same mesh at 1/10 (E4) runs to the end below 2. */
+Test(cli_maxwell_mesh, avi_blow_up_stops) {
+  run_output r = run_cli("maxwell mesh --rect 20 --warp 0.3 --avi --exact-steps --fraction 1 "
+                         "--t-end 8");
+  cr_expect_eq(r.status, 1, "%s%s", r.out, r.err);
+  cr_expect(strstr(r.err, "blew up at t = ") != NULL, "%s", r.err);
+  cr_expect(strstr(r.err, "x its initial value") != NULL, "%s", r.err);
+  cr_expect(strstr(r.err, "smaller --fraction (now 1)") != NULL, "%s", r.err);
+  cr_expect_eq(count_lines(r.err), 1, "%s", r.err);
+  const double t = number_after(r.err, "blew up at t = ");
+  cr_expect(t > 0.0 && t < 8.0, "stopped early: %s", r.err);
+  const double ratio = number_after(r.err, "the field energy is ");
+  cr_expect(ratio > 10.0 && ratio < 20.0, "stopped where it passed 10: %s", r.err);
+  run_output_free(&r);
+  r = run_cli("maxwell mesh --rect 20 --warp 0.3 --avi --exact-steps --t-end 8");
+  cr_expect_eq(r.status, 0, "%s", r.err);
+  cr_expect_lt(number_after(r.out, "max plain/E0 "), 2.0, "%s", r.out);
+  run_output_free(&r);
+}
+
+/* The diagonal star insisted on where it is not positive (the Gmsh cube) grows at any step: the
+ * leapfrog stops when the energy is non-finite, advises --whitney, and the summary's invariants
+ * are NaN, not the 0.000e+00 that fmax made of them. */
+Test(cli_maxwell_mesh, leapfrog_non_finite_stops) {
+  run_output r = run_cli("maxwell mesh " CUBE " --allow-negative-stars --t-end 3 --samples 1");
+  cr_expect_eq(r.status, 1, "%s%s", r.out, r.err);
+  cr_expect(strstr(r.err, "blew up") != NULL, "%s", r.err);
+  cr_expect(strstr(r.err, "non-finite") != NULL, "%s", r.err);
+  cr_expect(strstr(r.err, "use --whitney") != NULL, "%s", r.err);
+  cr_expect(isnan(number_after(r.out, "max |div B| ")), "%s", r.out);
+  cr_expect(isnan(number_after(r.out, "max Gauss drift ")), "%s", r.out);
+  run_output_free(&r);
+  /* observed every step: stopped at the first non-finite energy, long before t = 3 */
+  r = run_cli("maxwell mesh " CUBE " --allow-negative-stars --t-end 3 --samples 1000");
+  cr_expect_eq(r.status, 1, "%s%s", r.out, r.err);
+  cr_expect_lt(number_after(r.err, "blew up at t = "), 1.5, "%s", r.err);
+  run_output_free(&r);
+}
+
+static size_t count_vtu(const char *dir) {
+  DIR *d = opendir(path_in_tmp(dir));
+  cr_assert_not_null(d);
+  size_t n = 0;
+  for (struct dirent *e; (e = readdir(d)) != NULL;) {
+    const size_t len = strlen(e->d_name);
+    n += len > 4 && strcmp(e->d_name + len - 4, ".vtu") == 0;
+  }
+  closedir(d);
+  return n;
+}
+
+/* The leapfrog stops at t = 0.9756 for --t-end 1 (the last whole step), where no observation
+ * fell: the third snapshot was lost. Now the last one is the final state, and snap/s.pvd lists
+ * the three files with their times, the last the run's final time. */
+Test(cli_maxwell_mesh, snapshots_and_pvd) {
+  cr_assert_eq(mkdir(path_in_tmp("snap"), 0755), 0);
+  run_output r = run_cli("maxwell mesh " CUBE " --whitney --t-end 1 --vtu snap/s --snapshots 3");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  const double t_final = number_after(r.out, "run: t = ");
+  cr_expect_lt(t_final, 1.0, "%s", r.out);
+  run_output_free(&r);
+  cr_expect_eq(count_vtu("snap"), 3);
+  char *pvd = read_file(path_in_tmp("snap/s.pvd"));
+  cr_expect(strstr(pvd, "<VTKFile type=\"Collection\"") != NULL, "%s", pvd);
+  cr_expect_eq(count_substr(pvd, "<DataSet "), 3, "%s", pvd);
+  cr_expect(strstr(pvd, "timestep=\"0\" file=\"s_0000.vtu\"") != NULL, "%s", pvd);
+  const char *last = strstr(pvd, "file=\"s_0002.vtu\"");
+  cr_assert_not_null(last, "%s", pvd);
+  const char *ts = last;
+  while (ts > pvd && strncmp(ts, "timestep=\"", 10) != 0) --ts;
+  cr_expect_lt(fabs(strtod(ts + 10, NULL) - t_final), 1e-5, "%s", pvd);
+  free(pvd);
+  /* the AVI, and a single snapshot: the final state */
+  cr_assert_eq(mkdir(path_in_tmp("one"), 0755), 0);
+  r = run_cli("maxwell mesh --rect 6 --avi --t-end 0.5 --vtu one/a --snapshots 1");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  run_output_free(&r);
+  cr_expect_eq(count_vtu("one"), 1);
+  pvd = read_file(path_in_tmp("one/a.pvd"));
+  cr_expect(strstr(pvd, "timestep=\"0.5\" file=\"a_0000.vtu\"") != NULL, "%s", pvd);
+  free(pvd);
+  r = run_cli("maxwell mesh --rect 6 --vtu x --snapshots 0");
+  cr_expect_eq(r.status, 2, "%s", r.err);
+  run_output_free(&r);
+}
