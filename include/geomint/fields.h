@@ -666,6 +666,10 @@ typedef struct gm_mesh_cavity_run {
   uint64_t seed;                    /* default 11 */
   double pulse_width;               /* default 0 (from the band) */
   double max_error, min_amplitude;  /* defaults 1e-3, 0.01 */
+  /* optional (default NULL): called every 1/200 of the run with the steps done and planned; a
+   * non-zero return stops the measurement (GM_ECALLBACK) */
+  int (*progress)(void *ctx, double steps_done, double steps_total);
+  void *progress_ctx;               /* borrowed */
 } gm_mesh_cavity_run;
 gm_mesh_cavity_run gm_mesh_cavity_run_defaults(void);
 /* The modes (at most cap, ascending) of the cavity g (tetrahedra, or triangles in the plane;

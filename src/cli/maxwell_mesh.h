@@ -28,6 +28,11 @@ typedef struct mm_guard {
  * (...); ADVICE" when it is non-finite or above limit × e0, else 0. */
 int mm_guard_check(mm_guard *g, double t, double plain);
 
+/* Advance s to t in 200 pieces (the same run as one advance_to) with the progress line of the
+ * maxwell commands on a terminal (mx_progress: leapfrog steps, or AVI face updates, whose total
+ * is estimated from the first piece). Returns advance_to's status. */
+gm_status mm_advance_progress(gm_mesh_maxwell *s, double t);
+
 /* Seed 000 experiment E5 on the Gmsh box cavity `mesh` (borrowed); see maxwell_mesh_e5.c. */
 #include <stdint.h>
 #include "geomint/mesh.h"

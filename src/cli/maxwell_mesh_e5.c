@@ -186,7 +186,7 @@ static int e5_go(const gm_geometry *g, const gm_mesh_maxwell_options *o, uint64_
     mm_guard_check(&r->guard, 0.0, en.plain);
   }
   const double t0 = cpu_now();
-  const gm_status st = gm_mesh_maxwell_advance_to(r->s, t_end);
+  const gm_status st = mm_advance_progress(r->s, t_end);
   r->cpu = cpu_now() - t0;
   if (st != GM_OK) {
     if (!r->guard.fired) cli_error(E5, "%s%s", gm_mesh_maxwell_errmsg(r->s), r->guard.advice);
