@@ -28,6 +28,9 @@ static const char usage[] =
     "  --whitney          Whitney (consistent) star, CHOLMOD; for meshes that are not\n"
     "                     well-centred (leapfrog, uniform materials)\n"
     "  --allow-negative-stars  run the diagonal star on a mesh that is not well-centred\n"
+    "  --material X0,Y0[,Z0],X1,Y1[,Z1],EPS,MU\n"
+    "                     epsilon and mu in a box (the cells whose centroid lies in it;\n"
+    "                     repeatable, a later box wins; vacuum elsewhere)\n"
     "  --t-end T          final time (default 8)\n"
     "  --samples N        energy/probe samples over the run (default 1000)\n"
     "  --seed S           random initial E (default 1)\n"
@@ -175,12 +178,62 @@ static int observe(void *vctx, const gm_mesh_maxwell *s) {
   return 0;
 }
 
+/* ε and μ per cell from the --material boxes X0,Y0[,Z0],X1,Y1[,Z1],EPS,MU: a cell takes the
+ * values of the last box holding its centroid (vacuum elsewhere); the values are passed on as
+ * given, so the library's refusal of ε, μ <= 0 reaches the user (the caller names the option).
+ * hits[i]: the cells box i got. Exit status; the message printed. */
+static int build_materials(const cli_settings *m, const gm_complex *cx, double *eps, double *mu,
+                           size_t *owner, size_t *hits) {
+  const size_t n = gm_complex_dim(cx), nt = gm_complex_count(cx, n);
+  const size_t *tv = gm_complex_simplices(cx, n);
+  const double *X = gm_complex_coordinates(cx);
+  for (size_t T = 0; T < nt; ++T) eps[T] = mu[T] = 1.0, owner[T] = SIZE_MAX;
+  for (size_t i = 0; i < m->n; ++i) {
+    double v[8];
+    size_t k = 0;
+    const char *p = m->items[i];
+    for (char *end; k < 8; p = end + 1) {
+      v[k++] = strtod(p, &end);
+      if (end == p || (*end != ',' && *end != '\0')) { k = 0; break; }
+      if (*end == '\0') break;
+    }
+    int ok = k == 2 * n + 2;
+    for (size_t d = 0; ok && d < n; ++d) ok = isfinite(v[d]) && isfinite(v[n + d]) && v[d] < v[n + d];
+    if (!ok) {
+      cli_error("maxwell mesh", "--material %s: expected %s (a box with X0 < X1 ..., then "
+                "epsilon and mu)", m->items[i],
+                n == 2 ? "X0,Y0,X1,Y1,EPS,MU" : "X0,Y0,Z0,X1,Y1,Z1,EPS,MU");
+      return CLI_EXIT_USAGE;
+    }
+    hits[i] = 0;
+    for (size_t T = 0; T < nt; ++T) {
+      int in = 1;
+      for (size_t d = 0; d < n && in; ++d) {
+        double c = 0.0;
+        for (size_t j = 0; j <= n; ++j) c += X[tv[(n + 1) * T + j] * n + d];
+        c /= (double)(n + 1);
+        in = c >= v[d] && c <= v[n + d];
+      }
+      if (!in) continue;
+      if (owner[T] != SIZE_MAX) --hits[owner[T]];
+      eps[T] = v[2 * n], mu[T] = v[2 * n + 1], owner[T] = i, ++hits[i];
+    }
+    if (hits[i] == 0) {
+      cli_error("maxwell mesh", "--material %s: no cell's centroid lies in the box",
+                m->items[i]);
+      return CLI_EXIT_USAGE;
+    }
+  }
+  return CLI_EXIT_OK;
+}
+
 int cli_maxwell_mesh(int argc, char **argv) {
   int avi = 0, whitney = 0, allow = 0, e5 = 0, exact = 0;
   const char *out_dir = NULL;
   double fraction = 0.0 /* 0.1, E5 0.25 */, sample_dt = 0.005, t_compare = 1.0, courant = 0.9, dt = 0.0, t_end = 8.0, ly = 0.7, warp = 0.0, f_max = 2.0;
   size_t samples = 1000, seed = 1, rect = 0, snapshots = 4;
   const char *energy_path = NULL, *probe = NULL, *vtu = NULL;
+  cli_settings materials = {0};
   cli_option options[] = {{"--avi", CLI_ARG_FLAG, &avi, 0},
                           {"--whitney", CLI_ARG_FLAG, &whitney, 0},
                           {"--allow-negative-stars", CLI_ARG_FLAG, &allow, 0},
@@ -202,7 +255,8 @@ int cli_maxwell_mesh(int argc, char **argv) {
                           {"--exact-steps", CLI_ARG_FLAG, &exact, 0},
                           {"--sample", CLI_ARG_DOUBLE, &sample_dt, 0},
                           {"--t-compare", CLI_ARG_DOUBLE, &t_compare, 0},
-                          {"--out", CLI_ARG_STRING, &out_dir, 0}};
+                          {"--out", CLI_ARG_STRING, &out_dir, 0},
+                          {"--material", CLI_ARG_LIST, &materials, 0}};
   const char *pos[1];
   size_t n_pos = 0;
   int status = cli_parse("maxwell mesh", argc, argv, options, sizeof options / sizeof options[0],
@@ -259,6 +313,11 @@ int cli_maxwell_mesh(int argc, char **argv) {
     return st == GM_ENOMEM ? CLI_EXIT_FAILURE : CLI_EXIT_USAGE;
   }
   if (e5) {
+    if (materials.n) {
+      cli_error("maxwell mesh", "--material does not apply to --e5 (a vacuum cavity)");
+      gm_mesh_free(mesh);
+      return CLI_EXIT_USAGE;
+    }
     if (rect) {
       cli_error("maxwell mesh", "--e5 takes the Gmsh cavity file (examples/e5_cavity.msh)");
       gm_mesh_free(mesh);
@@ -272,7 +331,8 @@ int cli_maxwell_mesh(int argc, char **argv) {
   gm_complex *cx = NULL;
   gm_geometry *g = NULL;
   gm_mesh_maxwell *s = NULL;
-  double *E = NULL, *Bsync = NULL, *snap_t = NULL;
+  double *E = NULL, *Bsync = NULL, *snap_t = NULL, *eps = NULL, *mu = NULL;
+  size_t *owner = NULL, hits[CLI_MAX_SETTINGS];
   FILE *ef = NULL;
   status = CLI_EXIT_USAGE;
   if ((st = gm_mesh_complex(mesh, &cx, &err)) != GM_OK ||
@@ -288,8 +348,26 @@ int cli_maxwell_mesh(int argc, char **argv) {
   o.avi_levels = !exact;
   o.courant = courant;
   o.dt = dt;
-  if ((st = gm_mesh_maxwell_create(g, NULL, NULL, &o, &s, &err)) != GM_OK) {
-    cli_error("maxwell mesh", "%s", err.message);
+  const size_t nt = gm_complex_count(cx, gm_complex_dim(cx));
+  if (materials.n) {
+    eps = malloc(nt * sizeof(double));
+    mu = malloc(nt * sizeof(double));
+    owner = malloc(nt * sizeof(size_t));
+    if (!eps || !mu || !owner) { status = CLI_EXIT_FAILURE; cli_error("maxwell mesh", "out of memory"); goto done; }
+    if ((status = build_materials(&materials, cx, eps, mu, owner, hits)) != CLI_EXIT_OK) goto done;
+    status = CLI_EXIT_USAGE;
+  }
+  if ((st = gm_mesh_maxwell_create(g, eps, mu, &o, &s, &err)) != GM_OK) {
+    size_t bad = SIZE_MAX; /* the region that set a refused ε or μ */
+    for (size_t T = 0; materials.n && T < nt && bad == SIZE_MAX; ++T)
+      if (!(eps[T] > 0.0 && isfinite(eps[T]) && mu[T] > 0.0 && isfinite(mu[T]))) bad = owner[T];
+    if (bad != SIZE_MAX)
+      cli_error("maxwell mesh", "--material %s: %s", materials.items[bad], err.message);
+    else if (strstr(err.message, "not well-centred"))
+      cli_error("maxwell mesh", "%s; on the command line: --allow-negative-stars to insist, or "
+                "--whitney (any mesh)", err.message);
+    else
+      cli_error("maxwell mesh", "%s", err.message);
     goto done;
   }
   const size_t ne = gm_complex_count(cx, 1), nf = gm_complex_count(cx, 2);
@@ -361,6 +439,12 @@ int cli_maxwell_mesh(int argc, char **argv) {
     if (isfinite(lim[k])) { smallest = fmin(smallest, fraction * lim[k]); ++active; }
   printf("mesh: %zu-D, %zu vertices, %zu edges, %zu faces, %zu cells\n", gm_complex_dim(cx),
          gm_complex_count(cx, 0), ne, nf, gm_complex_count(cx, gm_complex_dim(cx)));
+  if (materials.n) {
+    printf("materials:");
+    for (size_t i = 0; i < materials.n; ++i)
+      printf("%s %s on %zu cells", i ? ";" : "", materials.items[i], hits[i]);
+    printf(" (vacuum elsewhere)\n");
+  }
   printf("scheme: %s, star: %s, CFL limit %.6g, %s %.6g\n", avi ? "avi" : "leapfrog",
          whitney ? "whitney" : "diagonal", gm_mesh_maxwell_cfl_limit(s),
          avi ? "smallest face step" : "dt", gm_mesh_maxwell_dt(s));
@@ -402,6 +486,9 @@ done:
   free(E);
   free(Bsync);
   free(snap_t);
+  free(eps);
+  free(mu);
+  free(owner);
   gm_mesh_maxwell_free(s);
   gm_geometry_free(g);
   gm_complex_free(cx);

@@ -144,3 +144,65 @@ Test(cli_maxwell_mesh, progress_on_a_terminal_only) {
     run_output_free(&r);
   }
 }
+
+/* --material: ε and μ per box (cells by centroid); ε = 4 everywhere doubles the CFL limit (the
+ * wave speed halves); the library's refusal of ε or μ <= 0 reaches the user naming the option;
+ * malformed boxes and boxes holding no cell are bad input. */
+Test(cli_maxwell_mesh, materials) {
+  run_output r = run_cli("maxwell mesh --rect 10 --t-end 0.5");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  const double vacuum = number_after(r.out, "CFL limit ");
+  run_output_free(&r);
+  r = run_cli("maxwell mesh --rect 10 --t-end 0.5 --material -1,-1,2,2,4,1");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_expect_lt(fabs(number_after(r.out, "CFL limit ") / vacuum - 2.0), 1e-6, "%s", r.out);
+  cr_expect(strstr(r.out, "on 168 cells") != NULL, "%s", r.out);
+  run_output_free(&r);
+  /* two regions, the AVI: runs and keeps Gauss's law */
+  r = run_cli("maxwell mesh --rect 10 --avi --t-end 1 --material 0,0,0.5,0.7,2.5,1 "
+              "--material 0.5,0,1,0.3,1,1.5");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_expect_leq(number_after(r.out, "max Gauss drift "), 1e-12, "%s", r.out);
+  run_output_free(&r);
+  const char *bad_values[] = {"0,0,0.5,0.7,-1,1", "0,0,0.5,0.7,1,0", "0,0,0,1,1,1,0,1"};
+  for (size_t i = 0; i < 3; ++i) {
+    const char *mesh = i < 2 ? "--rect 10" : CUBE " --whitney";
+    r = run_cli("maxwell mesh %s --material %s", mesh, bad_values[i]);
+    cr_expect_eq(r.status, 2, "%s: %s", bad_values[i], r.err);
+    char want[128];
+    snprintf(want, sizeof want, "--material %s: mesh maxwell: %s of cell", bad_values[i],
+             i == 1 ? "mu" : "epsilon");
+    cr_expect(strstr(r.err, want) != NULL, "want '%s' in: %s", want, r.err);
+    cr_expect(strstr(r.err, "must be > 0") != NULL, "%s", r.err);
+    run_output_free(&r);
+  }
+  const char *malformed[] = {"0,0,0.5,0.7,1", "0.5,0,0.2,0.7,1,1", "a,0,1,1,1,1",
+                             "0,0,0.5,0.7,1,1,1,1", "2,2,3,3,1,1"};
+  for (size_t i = 0; i < 5; ++i) {
+    r = run_cli("maxwell mesh --rect 10 --material %s", malformed[i]);
+    cr_expect_eq(r.status, 2, "%s: %s", malformed[i], r.err);
+    cr_expect(strstr(r.err, malformed[i]) != NULL, "%s", r.err);
+    run_output_free(&r);
+  }
+}
+
+/* Refusals at create: a mesh with no interior edge (one triangle) says why instead of "dt = inf
+ * is above the CFL limit inf"; the not-well-centred refusal names the command-line flag. */
+Test(cli_maxwell_mesh, refusals_at_create) {
+  FILE *f = fopen(path_in_tmp("tri.msh"), "w");
+  cr_assert_not_null(f);
+  fputs("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+        "$EndNodes\n$Elements\n1\n1 2 2 0 0 1 2 3\n$EndElements\n", f);
+  fclose(f);
+  run_output r = run_cli("maxwell mesh tri.msh");
+  cr_expect_eq(r.status, 2, "%s", r.err);
+  cr_expect(strstr(r.err, "the mesh has no interior edges: under PEC every field is zero") != NULL,
+            "%s", r.err);
+  cr_expect(strstr(r.err, "inf") == NULL, "%s", r.err);
+  run_output_free(&r);
+  r = run_cli("maxwell mesh " CUBE);
+  cr_expect_eq(r.status, 2, "%s", r.err);
+  cr_expect(strstr(r.err, "not well-centred") != NULL, "%s", r.err);
+  cr_expect(strstr(r.err, "--allow-negative-stars") != NULL, "%s", r.err);
+  run_output_free(&r);
+}
