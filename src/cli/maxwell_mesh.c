@@ -51,7 +51,10 @@ static const char usage[] =
     "  --sample S         (--e5) the AVI's probe interval (default 0.005)\n"
     "  --t-compare T      (--e5) the final time of the cost comparison (default 1)\n"
     "  --out DIR          (--e5) write e5-spectrum.png there\n\n"
-    "Exit status: 0 success, 1 the run failed, 2 bad arguments or mesh.\n";
+    "A run that blows up stops with exit status 1 and says when: the AVI when its energy\n"
+    "passes 10 x its initial value (no source injects any), either scheme when the fields\n"
+    "become non-finite. On a terminal a progress line is shown.\n\n"
+    "Exit status: 0 success, 1 the run failed or blew up, 2 bad arguments or mesh.\n";
 
 static double rnd(uint64_t *z) {
   uint64_t x = (*z += 0x9e3779b97f4a7c15ull);

@@ -44,6 +44,12 @@ Test(cli_maxwell_mesh, avi_blow_up_stops) {
   const double ratio = number_after(r.err, "the field energy is ");
   cr_expect(ratio > 10.0 && ratio < 20.0, "stopped where it passed 10: %s", r.err);
   run_output_free(&r);
+  r = run_cli("maxwell mesh " GM_SOURCE_DIR "/examples/e5_cavity.msh --e5 --t-end 4 "
+              "--fraction 1");
+  cr_expect_eq(r.status, 1, "%s%s", r.out, r.err);
+  cr_expect(strstr(r.err, "maxwell mesh --e5: the run blew up at t = ") != NULL, "%s", r.err);
+  cr_expect(strstr(r.err, "smaller --fraction (now 1)") != NULL, "%s", r.err);
+  run_output_free(&r);
   r = run_cli("maxwell mesh --rect 20 --warp 0.3 --avi --exact-steps --t-end 8");
   cr_expect_eq(r.status, 0, "%s", r.err);
   cr_expect_lt(number_after(r.out, "max plain/E0 "), 2.0, "%s", r.out);
@@ -186,15 +192,23 @@ Test(cli_maxwell_mesh, materials) {
   }
 }
 
-/* Refusals at create: a mesh with no interior edge (one triangle) says why instead of "dt = inf
- * is above the CFL limit inf"; the not-well-centred refusal names the command-line flag. */
+/* Help texts name the sphere and the new options. Refusals at create: a mesh with no interior
+ * edge (one triangle) says why instead of "dt = inf is above the CFL limit inf"; the
+ * not-well-centred refusal names the command-line flag. */
 Test(cli_maxwell_mesh, refusals_at_create) {
   FILE *f = fopen(path_in_tmp("tri.msh"), "w");
   cr_assert_not_null(f);
   fputs("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
         "$EndNodes\n$Elements\n1\n1 2 2 0 0 1 2 3\n$EndElements\n", f);
   fclose(f);
-  run_output r = run_cli("maxwell mesh tri.msh");
+  run_output r = run_cli("maxwell --help");
+  cr_expect(strstr(r.out, "mesh-cavity [--shape box|cylinder|sphere]") != NULL, "%s", r.out);
+  run_output_free(&r);
+  r = run_cli("maxwell mesh --help");
+  cr_expect(strstr(r.out, "--material X0,Y0[,Z0],X1,Y1[,Z1],EPS,MU") != NULL, "%s", r.out);
+  cr_expect(strstr(r.out, "PREFIX.pvd") != NULL, "%s", r.out);
+  run_output_free(&r);
+  r = run_cli("maxwell mesh tri.msh");
   cr_expect_eq(r.status, 2, "%s", r.err);
   cr_expect(strstr(r.err, "the mesh has no interior edges: under PEC every field is zero") != NULL,
             "%s", r.err);
