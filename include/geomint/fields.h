@@ -502,7 +502,8 @@ typedef struct gm_mesh_maxwell gm_mesh_maxwell;
  * Fields start at zero, t_0 = 0. Errors (GM_EINVAL, message in err): another dimension, ε or
  * μ <= 0 or non-finite (the cell is named), non-positive star entries on a mesh that is not
  * well-centred (the message gives their count) unless allow_negative_stars, dt above the CFL
- * limit (the message gives the limit), a face step above its local limit; GM_ENOMEM. */
+ * limit (the message gives the limit), a face step above its local limit, a mesh with no
+ * interior edge (under PEC every field is zero); GM_ENOMEM. */
 gm_status gm_mesh_maxwell_create(const gm_geometry *g, const double *epsilon, const double *mu,
                                  const gm_mesh_maxwell_options *options, gm_mesh_maxwell **out,
                                  gm_error *err);
@@ -564,7 +565,8 @@ gm_status gm_mesh_maxwell_add_observer(gm_mesh_maxwell *s, size_t every,
 /* Leapfrog: n steps (seed 000 §3.4.2, notes A11):
  *   D^{n+½} = D^{n−½} + Δt (d₁ᵀ ⋆_ν B^n − J^n),  E^{n+½} = ⋆_ε⁻¹ D^{n+½}   (Ampère, dG = 𝒥)
  *   B^{n+1} = B^n − Δt d₁ E^{n+½}                                        (Faraday, dF = 0)
- * AVI: GM_EINVAL (use advance_to). */
+ * GM_EDOMAIN when the fields become non-finite (looked for every 64 steps and at the end; the
+ * message names the times between which it happened). AVI: GM_EINVAL (use advance_to). */
 gm_status gm_mesh_maxwell_advance(gm_mesh_maxwell *s, size_t n_steps);
 /* Leapfrog: to the last step with t_n <= t. AVI: process every face event with time <= t. */
 gm_status gm_mesh_maxwell_advance_to(gm_mesh_maxwell *s, double t);
@@ -600,7 +602,8 @@ typedef struct gm_mesh_maxwell_energy {
 } gm_mesh_maxwell_energy;
 void gm_mesh_maxwell_energy_get(const gm_mesh_maxwell *s, gm_mesh_maxwell_energy *energy);
 /* max over top simplices of |d_{n−1} B| (3-D: div B per tetrahedron, the flux out of it; 2-D:
- * 0 by construction, B being a top form); AVI: of the synchronised B. */
+ * 0 by construction, B being a top form); AVI: of the synchronised B. NaN when B holds a NaN
+ * (a blown-up run never reports a clean invariant); likewise gm_mesh_maxwell_gauss. */
 double gm_mesh_maxwell_div_b(const gm_mesh_maxwell *s);
 /* Gauss residual div D − ρ = −d₀ᵀD − ρ per vertex (out: count(0) values, may be NULL);
  * boundary vertices are reported as 0 (PEC walls carry surface charge the scheme does not
@@ -663,6 +666,10 @@ typedef struct gm_mesh_cavity_run {
   uint64_t seed;                    /* default 11 */
   double pulse_width;               /* default 0 (from the band) */
   double max_error, min_amplitude;  /* defaults 1e-3, 0.01 */
+  /* optional (default NULL): called every 1/200 of the run with the steps done and planned; a
+   * non-zero return stops the measurement (GM_ECALLBACK) */
+  int (*progress)(void *ctx, double steps_done, double steps_total);
+  void *progress_ctx;               /* borrowed */
 } gm_mesh_cavity_run;
 gm_mesh_cavity_run gm_mesh_cavity_run_defaults(void);
 /* The modes (at most cap, ascending) of the cavity g (tetrahedra, or triangles in the plane;

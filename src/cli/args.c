@@ -78,6 +78,19 @@ static int store(const char *command, cli_option *o, const char *value) {
       s->items[s->n++] = value;
       return CLI_EXIT_OK;
     }
+    case CLI_ARG_LIST: {
+      cli_settings *s = o->target;
+      if (value[0] == '\0') {
+        cli_error(command, "%s needs a non-empty value", o->name);
+        return CLI_EXIT_USAGE;
+      }
+      if (s->n == CLI_MAX_SETTINGS) {
+        cli_error(command, "too many %s options (at most %d)", o->name, CLI_MAX_SETTINGS);
+        return CLI_EXIT_USAGE;
+      }
+      s->items[s->n++] = value;
+      return CLI_EXIT_OK;
+    }
   }
   return CLI_EXIT_USAGE;
 }
@@ -115,7 +128,7 @@ int cli_parse(const char *command, int argc, char **argv, cli_option *options,
       cli_unknown(command, "option", name, option_name_at, &table, NULL);
       return CLI_EXIT_USAGE;
     }
-    if (o->seen && o->type != CLI_ARG_SETTING) {
+    if (o->seen && o->type != CLI_ARG_SETTING && o->type != CLI_ARG_LIST) {
       cli_error(command, "%s given twice", o->name);
       return CLI_EXIT_USAGE;
     }

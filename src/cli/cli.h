@@ -48,7 +48,8 @@ typedef enum cli_arg_type {
   CLI_ARG_STRING,   /* const char * */
   CLI_ARG_DOUBLE,   /* double: any number, checked by the command */
   CLI_ARG_COUNT,    /* size_t: a non-negative integer */
-  CLI_ARG_SETTING   /* cli_settings: name=value, repeatable */
+  CLI_ARG_SETTING,  /* cli_settings: name=value, repeatable */
+  CLI_ARG_LIST      /* cli_settings: any non-empty text, repeatable, in the order given */
 } cli_arg_type;
 
 typedef struct cli_option {

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "cli/maxwell.h"
 #include "cli/maxwell_mesh.h"
 #include "geomint/geomint.h"
 
@@ -52,6 +53,13 @@ static const char usage[] =
     "                    the nearest peak, or the farthest where a multiplet has > 2 members)\n\n"
     "Exit status: 0 success (the table is printed; spurious peaks are reported, not fatal),\n"
     "1 a failed run, 2 bad input.\n";
+
+static int show_progress(void *ctx, double done, double total) {
+  mx_progress *p = ctx;
+  p->total = (size_t)total; /* known once the library has the step */
+  mx_progress_show(p, (size_t)done);
+  return 0;
+}
 
 static int make_level(const char *shape, const char *dir, size_t n0, size_t k, gm_mesh **mesh,
                       double *h) {
@@ -216,11 +224,21 @@ int cli_maxwell_mesh_cavity(int argc, char **argv) {
     gm_harminv_mode modes[MC_MAX_MODES];
     size_t nm = 0;
     double dt = 0.0;
+    mx_progress progress; /* a line on a terminal only; steps known once dt is */
+    mx_progress_start(&progress, 0);
+    run.progress = show_progress;
+    run.progress_ctx = &progress;
     st = gm_mesh_maxwell_cavity_modes(g, &o, &run, MC_MAX_MODES, modes, &nm, &dt, &err);
+    mx_progress_end(&progress);
     const size_t ntet = gm_complex_count(cx, 3), nedge = gm_complex_count(cx, 1);
     gm_geometry_free(g), gm_complex_free(cx), gm_mesh_free(mesh);
     if (st != GM_OK) {
-      cli_error(MC, "level %zu: %s", l + 1, err.message);
+      cli_error(MC, "level %zu: %s%s", l + 1, err.message,
+                st != GM_EDOMAIN ? ""
+                : diagonal ? "; the run blew up: the diagonal star has non-positive entries on "
+                             "this mesh (--diagonal accepts them), which no step cures: drop "
+                             "--diagonal for the Whitney star"
+                           : "; the run blew up");
       return CLI_EXIT_FAILURE;
     }
     for (size_t j = 0; j < nu; ++j) errs[j][l] = worst[j][l] = NAN;

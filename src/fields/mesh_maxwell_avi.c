@@ -252,6 +252,7 @@ gm_status mm_avi_advance_to(gm_mesh_maxwell *s, double t) {
   if (t > s->t) s->t = t;
   if (gm_first_nonfinite(s->ne, s->E) != s->ne)
     return gm_fail(s->errmsg, sizeof s->errmsg, GM_EDOMAIN,
-                   "advance_to: the fields became non-finite after %zu events", s->step);
+                   "advance_to: the fields became non-finite by t = %.6g (%zu events)", s->t,
+                   s->step);
   return GM_OK;
 }

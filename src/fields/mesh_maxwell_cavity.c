@@ -302,9 +302,18 @@ gm_status gm_mesh_maxwell_cavity_modes(const gm_geometry *g,
       if (st != GM_OK) gm_error_set(err, st, "%s", gm_mesh_maxwell_errmsg(s));
     }
   }
-  if (st == GM_OK) {
-    st = gm_mesh_maxwell_advance(s, steps);
-    if (st != GM_OK) gm_error_set(err, st, "%s", gm_mesh_maxwell_errmsg(s));
+  const size_t chunk = run->progress && steps >= 200 ? steps / 200 : steps;
+  for (size_t done = 0; st == GM_OK && done < steps;) {
+    const size_t k = steps - done < chunk ? steps - done : chunk;
+    st = gm_mesh_maxwell_advance(s, k);
+    if (st != GM_OK) {
+      gm_error_set(err, st, "%s", gm_mesh_maxwell_errmsg(s));
+      break;
+    }
+    done += k;
+    if (run->progress && run->progress(run->progress_ctx, (double)done, (double)steps) != 0)
+      st = gm_error_set(err, GM_ECALLBACK, "mesh cavity: stopped by the progress callback at "
+                        "step %zu of %zu", done, steps);
   }
   size_t n = steps;
   for (size_t id = 0; id < 3 * run->n_probes && st == GM_OK; ++id) {

@@ -292,6 +292,15 @@ gm_status gm_mesh_maxwell_create(const gm_geometry *g, const double *epsilon, co
       return gm_error_set(err, GM_EINVAL, "mesh maxwell: mu of cell %zu is %g (must be > 0)", T,
                           mu[T]);
   }
+  /* PEC zeroes E on boundary edges; with no interior edge nothing ever moves (and the CFL
+     limit would be infinite) */
+  const unsigned char *bnd_edge = gm_complex_boundary_mask(cx, 1);
+  size_t n_interior = 0;
+  for (size_t e = 0; e < gm_complex_count(cx, 1); ++e) n_interior += !bnd_edge[e];
+  if (n_interior == 0)
+    return gm_error_set(err, GM_EINVAL,
+                        "mesh maxwell: the mesh has no interior edges: under PEC every field is "
+                        "zero");
   gm_mesh_maxwell_options o = options ? *options : gm_mesh_maxwell_defaults();
   if (!(o.courant > 0.0) || o.courant > 1.0 || !isfinite(o.dt))
     return gm_error_set(err, GM_EINVAL, "mesh maxwell: courant must be in (0, 1], dt finite");

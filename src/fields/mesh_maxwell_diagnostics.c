@@ -160,6 +160,7 @@ double gm_mesh_maxwell_div_b(const gm_mesh_maxwell *s) {
     double div = 0.0;
     for (size_t p = d2->row_start[T]; p < d2->row_start[T + 1]; ++p)
       div += d2->val[p] * B[d2->col[p]];
+    if (isnan(div)) return NAN; /* a blown-up run must not report a clean invariant */
     m = fabs(div) > m ? fabs(div) : m;
   }
   return m;
@@ -177,7 +178,7 @@ double gm_mesh_maxwell_gauss(const gm_mesh_maxwell *s, double *out) {
   double m = 0.0;
   for (size_t v = 0; v < s->nv; ++v) {
     acc[v] = s->bnd_v[v] ? 0.0 : acc[v] - s->rho[v];
-    m = fabs(acc[v]) > m ? fabs(acc[v]) : m;
+    m = !(fabs(acc[v]) <= m) && !isnan(m) ? fabs(acc[v]) : m; /* NaN sticks */
   }
   return m;
 }

@@ -119,7 +119,51 @@ Test(mesh_maxwell, bad_meshes) {
   gm_mesh_maxwell *s = NULL;
   cr_assert_eq(gm_mesh_maxwell_create(f.g, NULL, NULL, &o, &s, &err), GM_OK, "%s", err.message);
   gm_mesh_maxwell_free(s);
+  /* insisted on, the diagonal star's negative entries make the leapfrog blow up whatever the
+   * step: advance stops with the times between which the fields became non-finite (not at the
+   * end), and div B and Gauss report NaN, not a clean 0 (fmax-style maxima drop NaN) */
+  o = gm_mesh_maxwell_defaults();
+  o.allow_negative_stars = 1;
+  cr_assert_eq(gm_mesh_maxwell_create(f.g, NULL, NULL, &o, &s, &err), GM_OK, "%s", err.message);
+  {
+    const size_t ne = gm_complex_count(f.cx, 1), nf = gm_complex_count(f.cx, 2);
+    double *E = malloc(ne * sizeof(double)), *B = malloc(nf * sizeof(double));
+    mm_random_fields(&f, 5, E, B);
+    gm_mesh_maxwell_set_fields(s, E, NULL);
+    const size_t n = (size_t)(200.0 / gm_mesh_maxwell_dt(s));
+    cr_assert_eq(gm_mesh_maxwell_advance(s, n), GM_EDOMAIN);
+    cr_assert(strstr(gm_mesh_maxwell_errmsg(s), "non-finite between t = ") != NULL, "%s",
+              gm_mesh_maxwell_errmsg(s));
+    cr_assert_lt(gm_mesh_maxwell_step(s), n, "stopped near the blow-up: %s",
+                 gm_mesh_maxwell_errmsg(s));
+    const double *b = gm_mesh_maxwell_b(s);
+    size_t nan_faces = 0;
+    for (size_t k = 0; k < nf; ++k) nan_faces += isnan(b[k]);
+    cr_assert_gt(nan_faces, 0, "the state holds NaN");
+    cr_assert(isnan(gm_mesh_maxwell_div_b(s)), "div B %g", gm_mesh_maxwell_div_b(s));
+    cr_assert(isnan(gm_mesh_maxwell_gauss(s, NULL)), "Gauss %g", gm_mesh_maxwell_gauss(s, NULL));
+    free(E); free(B);
+  }
+  gm_mesh_maxwell_free(s);
   mm_fixture_free(&f);
+  /* no interior edge (one triangle, one tetrahedron): PEC zeroes every field; refused */
+  {
+    const double x2[] = {0, 0, 1, 0, 0, 1}, x3[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const size_t t2[] = {0, 1, 2}, t3[] = {0, 1, 2, 3};
+    for (int d = 2; d <= 3; ++d) {
+      gm_complex *c1 = NULL;
+      gm_geometry *g1 = NULL;
+      cr_assert_eq(gm_complex_create((size_t)d, (size_t)d + 1, d == 2 ? x2 : x3, (size_t)d, 1,
+                                     d == 2 ? t2 : t3, &c1, &err), GM_OK, "%s", err.message);
+      cr_assert_eq(gm_geometry_create(c1, NULL, &g1, &err), GM_OK, "%s", err.message);
+      expect_create(g1, NULL, NULL, NULL, GM_EINVAL, "no interior edges: under PEC every field");
+      o = gm_mesh_maxwell_defaults();
+      o.star = GM_MESH_STAR_WHITNEY;
+      expect_create(g1, NULL, NULL, &o, GM_EINVAL, "no interior edges");
+      gm_geometry_free(g1);
+      gm_complex_free(c1);
+    }
+  }
   /* Kuhn box: zero dual edges; refused even when insisting */
   mm_fixture k = mm_box(2);
   o = gm_mesh_maxwell_defaults();
