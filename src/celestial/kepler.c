@@ -252,45 +252,41 @@ gm_status gm_kepler_drift(double mu, double dt, const double x0[3], const double
 /* Drifts of n independent orbits by the same dt (x, v, dx, dv: n 3-vectors, borrowed): each
  * result is bitwise the one of gm_kepler_drift. Short drifts (the drifts of a splitting
  * method) go through the short path `width` orbits at a time; any other orbit, or one whose
- * start was not close enough, is handed to gm_kepler_drift. */
-gm_status gm_kepler_drift_many_width(int width, size_t n, const double *mu, double dt,
-                                     const double *x, const double *v, double *dx, double *dv) {
+ * start was not close enough, is handed to gm_kepler_drift. With apply, dx and dv are x and v
+ * and receive x + dx, v + dv (and ir, unless NULL, 1/|x| at the end). */
+static gm_status drift_many(int width, size_t n, const double *mu, double dt, const double *x,
+                            const double *v, double *dx, double *dv, int apply, double *ir) {
   gm_kepler_short_fn *short_path = width == 4 ? gm_kepler_short4 : gm_kepler_short2;
   const size_t chunk = (width == 4 ? 4 : 2) * KEPLER_MAX_GROUPS;
   for (size_t base = 0; base < n; base += chunk) {
     const size_t m = n - base < chunk ? n - base : chunk;
     int done[4 * KEPLER_MAX_GROUPS];
-    short_path(m, mu + base, dt, x + 3 * base, v + 3 * base, dx + 3 * base, dv + 3 * base, 0,
-               NULL, done);
+    short_path(m, mu + base, dt, x + 3 * base, v + 3 * base, dx + 3 * base, dv + 3 * base, apply,
+               ir != NULL ? ir + base : NULL, done);
     for (size_t j = 0; j < m; ++j) {
       if (done[j]) continue;
       const size_t i = base + j;
-      gm_status st = gm_kepler_drift(mu[i], dt, x + 3 * i, v + 3 * i, dx + 3 * i, dv + 3 * i);
+      double sx[3], sv[3];
+      gm_status st = gm_kepler_drift(mu[i], dt, x + 3 * i, v + 3 * i, apply ? sx : dx + 3 * i,
+                                     apply ? sv : dv + 3 * i);
       if (st != GM_OK) return st;
+      if (!apply) continue;
+      double *xi = dx + 3 * i, *vi = dv + 3 * i;
+      for (int c = 0; c < 3; ++c) xi[c] += sx[c], vi[c] += sv[c];
+      if (ir != NULL) ir[i] = 1.0 / sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
     }
   }
   return GM_OK;
 }
 
+gm_status gm_kepler_drift_many_width(int width, size_t n, const double *mu, double dt,
+                                     const double *x, const double *v, double *dx, double *dv) {
+  return drift_many(width, n, mu, dt, x, v, dx, dv, 0, NULL);
+}
+
 gm_status gm_kepler_drift_many_apply(int width, size_t n, const double *mu, double dt, double *x,
                                      double *v, double *ir) {
-  gm_kepler_short_fn *short_path = width == 4 ? gm_kepler_short4 : gm_kepler_short2;
-  const size_t chunk = (width == 4 ? 4 : 2) * KEPLER_MAX_GROUPS;
-  for (size_t base = 0; base < n; base += chunk) {
-    const size_t m = n - base < chunk ? n - base : chunk;
-    int done[4 * KEPLER_MAX_GROUPS];
-    short_path(m, mu + base, dt, x + 3 * base, v + 3 * base, x + 3 * base, v + 3 * base, 1,
-               ir != NULL ? ir + base : NULL, done);
-    for (size_t j = 0; j < m; ++j) {
-      if (done[j]) continue;
-      double *xi = x + 3 * (base + j), *vi = v + 3 * (base + j), dx[3], dv[3];
-      gm_status st = gm_kepler_drift(mu[base + j], dt, xi, vi, dx, dv);
-      if (st != GM_OK) return st;
-      for (int c = 0; c < 3; ++c) xi[c] += dx[c], vi[c] += dv[c];
-      if (ir != NULL) ir[base + j] = 1.0 / sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
-    }
-  }
-  return GM_OK;
+  return drift_many(width, n, mu, dt, x, v, x, v, 1, ir);
 }
 
 gm_status gm_kepler_drift_many(size_t n, const double *mu, double dt, const double *x,

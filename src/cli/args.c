@@ -40,6 +40,17 @@ static int parse_count(const char *text, size_t *out) {
 }
 
 /* Store value into option o; returns an exit status. */
+/* One more value of a repeatable option (--set, lists), within CLI_MAX_SETTINGS. */
+static int append_item(const char *command, const cli_option *o, cli_settings *s,
+                       const char *value) {
+  if (s->n == CLI_MAX_SETTINGS) {
+    cli_error(command, "too many %s options (at most %d)", o->name, CLI_MAX_SETTINGS);
+    return CLI_EXIT_USAGE;
+  }
+  s->items[s->n++] = value;
+  return CLI_EXIT_OK;
+}
+
 static int store(const char *command, cli_option *o, const char *value) {
   switch (o->type) {
     case CLI_ARG_FLAG:
@@ -71,25 +82,14 @@ static int store(const char *command, cli_option *o, const char *value) {
         cli_error(command, "%s expects name=value (e.g. --set e=0.6), got '%s'", o->name, value);
         return CLI_EXIT_USAGE;
       }
-      if (s->n == CLI_MAX_SETTINGS) {
-        cli_error(command, "too many %s options (at most %d)", o->name, CLI_MAX_SETTINGS);
-        return CLI_EXIT_USAGE;
-      }
-      s->items[s->n++] = value;
-      return CLI_EXIT_OK;
+      return append_item(command, o, s, value);
     }
     case CLI_ARG_LIST: {
-      cli_settings *s = o->target;
       if (value[0] == '\0') {
         cli_error(command, "%s needs a non-empty value", o->name);
         return CLI_EXIT_USAGE;
       }
-      if (s->n == CLI_MAX_SETTINGS) {
-        cli_error(command, "too many %s options (at most %d)", o->name, CLI_MAX_SETTINGS);
-        return CLI_EXIT_USAGE;
-      }
-      s->items[s->n++] = value;
-      return CLI_EXIT_OK;
+      return append_item(command, o, o->target, value);
     }
   }
   return CLI_EXIT_USAGE;
