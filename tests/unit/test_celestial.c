@@ -371,3 +371,57 @@ Test(celestial, newtonian_path_equals_the_callback) {
   }
   gm_model_free(tm.model);
 }
+
+/* The same for 21 bodies (n-body central=1: a star and 20 planets on near-circular orbits from
+ * 1 to 20 au), so the kick's sums run over six chunks of four and the drift over groups of
+ * several vectors: own sums and callback give the same run. */
+Test(celestial, newtonian_path_many_planets) {
+  char path[] = "/tmp/geomint-celestial-many-XXXXXX";
+  int fd = mkstemp(path);
+  cr_assert_geq(fd, 0);
+  FILE *f = fdopen(fd, "w");
+  cr_assert_not_null(f);
+  const double G = 2.95912208286e-4;
+  fprintf(f, "1 0 0 0 0 0 0\n");
+  for (int k = 1; k <= 20; ++k) {
+    const double r = k, phase = 2.4 * k, speed = sqrt(G / r);
+    fprintf(f, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", 1e-6 * (1 + k % 3),
+            r * cos(phase), r * sin(phase), 0.01 * r * sin(3.0 * k), -speed * sin(phase),
+            speed * cos(phase), 0.0);
+  }
+  fclose(f);
+  gm_model *nb = NULL;
+  cr_assert_eq(gm_model_create("n-body", &nb), GM_OK);
+  cr_assert_eq(gm_model_set_text(nb, "file", path), GM_OK);
+  cr_assert_eq(gm_model_set(nb, "G", G), GM_OK);
+  cr_assert_eq(gm_model_set(nb, "central", 1), GM_OK);
+  cr_assert_eq(gm_model_build(nb), GM_OK, "%s", gm_model_errmsg(nb));
+  const gm_problem *pb = gm_model_problem(nb);
+  cr_assert_eq(pb->celestial->newtonian, 1);
+  gm_celestial generic_c = *pb->celestial;
+  generic_c.newtonian = 0;
+  gm_problem generic = *pb;
+  generic.celestial = &generic_c;
+  const size_t n = gm_model_state_size(nb);
+  double y0[126];
+  cr_assert_leq(n, 126);
+  gm_model_initial_state(nb, NULL, y0);
+  const char *rows[] = {"aba-10-4", "wh-dh"};
+  for (size_t r = 0; r < 2; ++r) {
+    gm_integrator *a = test_integrator(gm_method_find(rows[r]), pb, 0.0, y0);
+    gm_integrator *b = test_integrator(gm_method_find(rows[r]), &generic, 0.0, y0);
+    cr_assert_eq(gm_integrator_run(a, 100, 20.0), GM_OK, "%s", gm_integrator_errmsg(a));
+    cr_assert_eq(gm_integrator_run(b, 100, 20.0), GM_OK, "%s", gm_integrator_errmsg(b));
+    double d = 0, size = 0;
+    for (size_t i = 0; i < n; ++i) {
+      d = fmax(d, fabs(gm_integrator_state(a)[i] - gm_integrator_state(b)[i]));
+      size = fmax(size, fabs(gm_integrator_state(b)[i]));
+    }
+    printf("%s, 21 bodies: own interaction vs callback %.2g relative\n", rows[r], d / size);
+    cr_expect_leq(d / size, 1e-12, "%s: %.3g", rows[r], d / size);
+    gm_integrator_free(a);
+    gm_integrator_free(b);
+  }
+  gm_model_free(nb);
+  remove(path);
+}
