@@ -16,7 +16,9 @@
 
 /* Passing 32-byte vectors without AVX has another ABI than with it; the helpers here are
  * static inline, so no such call crosses a compilation unit. */
-#if defined(__GNUC__) && !defined(__clang__)
+#if defined(__clang__)
+#pragma clang diagnostic ignored "-Wpsabi"
+#elif defined(__GNUC__)
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
 

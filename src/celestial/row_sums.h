@@ -21,11 +21,16 @@
 #include "celestial/lanes.h"
 
 /* lane l of the result is lane (l + r) mod 4 of v */
+#if defined(__clang__)
+#define ROT(v, a, b, c, d) __builtin_shufflevector(v, v, a, b, c, d)
+#else
+#define ROT(v, a, b, c, d) __builtin_shuffle(v, (v4i){a, b, c, d})
+#endif
 static inline v4 rot(v4 v, int r) {
   switch (r & 3) { /* r is a constant at every call, so this is one permutation */
-  case 1: return __builtin_shuffle(v, (v4i){1, 2, 3, 0});
-  case 2: return __builtin_shuffle(v, (v4i){2, 3, 0, 1});
-  case 3: return __builtin_shuffle(v, (v4i){3, 0, 1, 2});
+  case 1: return ROT(v, 1, 2, 3, 0);
+  case 2: return ROT(v, 2, 3, 0, 1);
+  case 3: return ROT(v, 3, 0, 1, 2);
   default: return v;
   }
 }
