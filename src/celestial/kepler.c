@@ -158,9 +158,9 @@ static gm_status solve(const kepler_equation *k, double s, double lo, double hi,
  * large, or a Newton correction not at round-off level (|d2| > 2^-40 |s1|).
  *
  * Two or four orbits at a time in the lanes of a vector (kepler_short.h, the width picked by
- * the CPU: gm_lane_width); each lane computes exactly what it would alone, so a single drift, done as
- * a group of copies of itself, is bitwise the drift of the same orbit in any group and at
- * either width. The G functions come from 6 terms of the Stumpff series for every lane
+ * the CPU: gm_lane_width); each lane computes exactly what it would alone, so a single drift,
+ * done as a group of copies of itself, is bitwise the drift of the same orbit in any group and
+ * at either width. The G functions come from 6 terms of the Stumpff series for every lane
  * (|z| < SHORT_Z = 0.09: the first term left out, z⁶/14!, is below 1e-17 of c_2), so no
  * lane's term count depends on another's. */
 

@@ -22,10 +22,11 @@ static inline int lane_ok(vd mu, vd t, vd r0, vd eta, vd beta, vd s0) {
 /* Short drifts of count ≤ VW·KEPLER_MAX_GROUPS orbits by dt: orbit k has μ = mu[k] and starts
  * at x + 3k, v + 3k; its increments go to dx + 3k, dv + 3k (with apply: the end state x + dx,
  * v + dv, and dx, dv may then be x, v), 1/|x(dt)| to ir[k] unless ir is NULL, and done[k]
- * says whether it was done (the others' outputs are untouched). Lanes past count repeat the last orbit. The work
- * goes phase by phase over all groups of VW orbits: each phase is a latency chain (square root
- * and division, the series, the Householder division, the Newton division), so the groups of
- * one phase run side by side; a group at a time was measured slower than scalar code. */
+ * says whether it was done (the others' outputs are untouched). Lanes past count repeat the
+ * last orbit. The work goes phase by phase over all groups of VW orbits: each phase is a
+ * latency chain (square root and division, the series, the Householder division, the Newton
+ * division), so the groups of one phase run side by side; a group at a time was measured
+ * slower than scalar code. */
 void KEPLER_SHORT(size_t count, const double *mu, double dt, const double *x, const double *v,
                   double *dx, double *dv, int apply, double *ir_out, int *done) {
   vd X[KEPLER_MAX_GROUPS][3], V[KEPLER_MAX_GROUPS][3], m[KEPLER_MAX_GROUPS],

@@ -76,7 +76,8 @@ int ROW_SUMS(size_t n, size_t np, const double *x, const double *y, const double
     A.x = (v4)((v4i)v4_load(x + 4 * ca) & A.real), A.y = (v4)((v4i)v4_load(y + 4 * ca) & A.real);
     A.z = (v4)((v4i)v4_load(z + 4 * ca) & A.real);
     A.gm = (v4)((v4i)(v4_splat(G) * v4_load(m + 4 * ca)) & A.real);
-    v4 ax = v4_load(acc + 12 * ca), ay = v4_load(acc + 12 * ca + 4), az = v4_load(acc + 12 * ca + 8);
+    v4 ax = v4_load(acc + 12 * ca), ay = v4_load(acc + 12 * ca + 4),
+       az = v4_load(acc + 12 * ca + 8);
     /* within the chunk: rotation 1 gives pairs (0,1), (1,2), (2,3), (3,0); rotation 2 gives
      * (0,2), (1,3) in lanes 0 and 1 (and the same pairs again in lanes 2 and 3) */
     pairs(&A, &A, 1, all, &ax, &ay, &az, &ax, &ay, &az, &coincide);

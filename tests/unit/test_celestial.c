@@ -292,7 +292,8 @@ Test(celestial, newtonian_sums) {
   for (size_t t = 0; t < sizeof sizes / sizeof sizes[0]; ++t) {
     const size_t n = sizes[t], np = (n + 3) / 4 * 4;
     double *x = malloc(5 * np * sizeof *x), *y = x + np, *z = y + np, *m = z + np, *mu = m + np;
-    double *a = malloc(3 * n * sizeof *a), *a2 = malloc(3 * n * sizeof *a2), *acc = malloc(3 * np * sizeof *acc);
+    double *a = malloc(3 * n * sizeof *a), *a2 = malloc(3 * n * sizeof *a2);
+    double *acc = malloc(3 * np * sizeof *acc);
     cr_assert(x && a && a2 && acc);
     for (size_t i = 0; i < np; ++i) {
       m[i] = i < n ? (i == 0 ? 1.0 : 1e-3 * (0.5 + rand() / (double)RAND_MAX)) : NAN;
@@ -318,16 +319,19 @@ Test(celestial, newtonian_sums) {
       }
     cr_assert_eq(gm_central_terms(n, x, y, z, mu, a), 0);
     for (size_t i = 0; i < n; ++i) {
-      const long double s = (long double)x[i] * x[i] + (long double)y[i] * y[i] + (long double)z[i] * z[i];
       const double c[3] = {x[i], y[i], z[i]};
-      for (int k = 0; k < 3; ++k)
-        worst_central = fmax(worst_central, (double)(fabsl(a[3 * i + k] - mu[i] * c[k] / (s * sqrtl(s))) /
-                                                      fabsl(mu[i] * c[k] / (s * sqrtl(s)))));
+      const long double s = (long double)c[0] * c[0] + (long double)c[1] * c[1] +
+                            (long double)c[2] * c[2];
+      for (int k = 0; k < 3; ++k) {
+        const long double exact = mu[i] * c[k] / (s * sqrtl(s));
+        worst_central = fmax(worst_central, (double)(fabsl(a[3 * i + k] - exact) / fabsl(exact)));
+      }
     }
     if (gm_lane_width() == 4) {
       cr_assert_eq(gm_row_sums2(n, np, x, y, z, m, 0.7, a2, acc), 0);
       cr_assert_eq(gm_row_sums4(n, np, x, y, z, m, 0.7, a, acc), 0);
-      cr_expect(memcmp(a, a2, 3 * n * sizeof *a) == 0, "row sums differ between widths, n = %zu", n);
+      cr_expect(memcmp(a, a2, 3 * n * sizeof *a) == 0, "row sums differ between widths, n = %zu",
+                n);
     }
     x[n - 1] = x[0], y[n - 1] = y[0], z[n - 1] = z[0];
     cr_expect_eq(gm_row_sums(n, np, x, y, z, m, 0.7, a, acc), 1, "coinciding bodies, n = %zu", n);
