@@ -208,10 +208,42 @@ static inline double inverse_cube(const double *x) {
   return 1.0 / (r2 * sqrt(r2));
 }
 
+/* Barycentric positions relative to the centre of mass from the internal Q: component k of
+ * body i into q[i·body + k·comp] (body = 3, comp = 1: the usual layout; body = 1, comp = np:
+ * by component, for the Newtonian sums). */
+static inline void barycentric_positions(ni_work *w, const double *Q, double *q, size_t body,
+                                         size_t comp) {
+  const size_t n = w->n;
+  /* V is translation invariant, so the positions are taken relative to the centre of mass
+   * (Q_0 = 0): the centre of mass moves with the total momentum (far, over 10⁹ days: ~5000 au
+   * for the outer solar system), and positions about it would lose the digits of the
+   * separations that V needs. With Q_0 in, the rounding of the interaction (a difference of
+   * O(1/ε) larger terms) grew linearly in t, and the energy error like t^1.6 instead of √t
+   * (docs/celestial.md). */
+  if (w->coordinates == GM_COORDINATES_JACOBI) {
+    double R0 = 0, R1 = 0, R2 = 0; /* R_{n−1} = centre of mass, then down (coordinates.c) */
+    for (size_t i = n - 1; i >= 1; --i) { /* components written out: this is on a kick's path */
+      const double *Qi = Q + 3 * i, c = w->m_over_eta[i];
+      R0 -= c * Qi[0], R1 -= c * Qi[1], R2 -= c * Qi[2];
+      q[i * body] = Qi[0] + R0, q[i * body + comp] = Qi[1] + R1,
+      q[i * body + 2 * comp] = Qi[2] + R2;
+    }
+    q[0] = R0, q[comp] = R1, q[2 * comp] = R2;
+  } else {
+    double c[3] = {0, 0, 0}, centre[3];
+    const double M = w->eta[n - 1];
+    for (size_t i = 1; i < n; ++i)
+      for (int k = 0; k < 3; ++k) c[k] += w->m[i] * Q[3 * i + k];
+    for (int k = 0; k < 3; ++k) q[(size_t)k * comp] = centre[k] = -c[k] / M;
+    for (size_t i = 1; i < n; ++i)
+      for (int k = 0; k < 3; ++k) q[i * body + (size_t)k * comp] = Q[3 * i + k] + centre[k];
+  }
+}
+
 /* The interaction of a Newtonian problem (gm_celestial.newtonian), evaluated here with the
  * vector kernels of row_sums.h (no callback; the same terms as below):
  *   Jacobi:  acc_i = a_i − Σ_{j<i} m_j a_j/η_{i−1} + μ_i Q_i/|Q_i|³, a = −M⁻¹∇V at the
- *            barycentric positions (relative to the centre of mass, as below);
+ *            barycentric positions (relative to the centre of mass: barycentric_positions);
  *   democratic heliocentric: q_i − q_j = Q_i − Q_j, and the central body's pull on planet i,
  *            −G m_0 Q_i/|Q_i|³, is the negative of the Kepler term, so both are left out and
  *            acc_i is the planets' pull alone (no cancellation of O(1/ε) larger terms). */
@@ -237,16 +269,7 @@ static gm_status newtonian_acceleration(gm_integrator *it, const double *Q) {
   if (dh) {
     coincide = w->row_sums(n - 1, np, px, py, pz, pk, w->sys->G, acc + 3, pk + np);
   } else {
-    double R[3] = {0, 0, 0}; /* as in barycentric_positions */
-    for (size_t i = n - 1; i >= 1; --i) {
-      R[0] -= w->m_over_eta[i] * Q[3 * i];
-      R[1] -= w->m_over_eta[i] * Q[3 * i + 1];
-      R[2] -= w->m_over_eta[i] * Q[3 * i + 2];
-      bx[i] = Q[3 * i] + R[0];
-      by[i] = Q[3 * i + 1] + R[1];
-      bz[i] = Q[3 * i + 2] + R[2];
-    }
-    bx[0] = R[0], by[0] = R[1], bz[0] = R[2];
+    barycentric_positions(w, Q, bx, 1, np); /* into bx, by, bz */
     if (drifted)
       for (size_t i = 1; i < n; ++i) {
         const double r = w->inv_r[i - 1], f = w->mu[i] * (r * r * r);
@@ -271,42 +294,13 @@ static gm_status newtonian_acceleration(gm_integrator *it, const double *Q) {
   return GM_OK;
 }
 
-/* Barycentric positions relative to the centre of mass from the internal Q, into w->q. */
-static void barycentric_positions(ni_work *w, const double *Q) {
-  const size_t n = w->n;
-  double *q = w->q;
-  /* V is translation invariant, so the positions are taken relative to the centre of mass
-   * (Q_0 = 0): the centre of mass moves with the total momentum (far, over 10⁹ days: ~5000 au
-   * for the outer solar system), and positions about it would lose the digits of the
-   * separations that V needs. With Q_0 in, the rounding of the interaction (a difference of
-   * O(1/ε) larger terms) grew linearly in t, and the energy error like t^1.6 instead of √t
-   * (docs/celestial.md). */
-  if (w->coordinates == GM_COORDINATES_JACOBI) {
-    double R[3] = {0, 0, 0}; /* R_{n−1} = centre of mass, then down (coordinates.c) */
-    for (size_t i = n - 1; i >= 1; --i)
-      for (int k = 0; k < 3; ++k) {
-        R[k] -= w->m_over_eta[i] * Q[3 * i + k];
-        q[3 * i + k] = Q[3 * i + k] + R[k];
-      }
-    for (int k = 0; k < 3; ++k) q[k] = R[k];
-  } else {
-    double c[3] = {0, 0, 0};
-    const double M = w->eta[n - 1];
-    for (size_t i = 1; i < n; ++i)
-      for (int k = 0; k < 3; ++k) c[k] += w->m[i] * Q[3 * i + k];
-    for (int k = 0; k < 3; ++k) q[k] = -c[k] / M;
-    for (size_t i = 1; i < n; ++i)
-      for (int k = 0; k < 3; ++k) q[3 * i + k] = Q[3 * i + k] + q[k];
-  }
-}
-
 /* The interaction acceleration at positions Q, into w->accel (planets only). */
 static gm_status interaction_acceleration(gm_integrator *it, const double *Q) {
   ni_work *w = it->work;
   const size_t n = w->n;
   double *g = w->grad, *acc = w->accel;
   if (w->sys->newtonian) return newtonian_acceleration(it, Q);
-  barycentric_positions(w, Q);
+  barycentric_positions(w, Q, w->q, 3, 1);
   gm_status st = gm_eval_potential_gradient(it, it->t, w->q, g);
   if (st != GM_OK) return st;
   if (w->coordinates == GM_COORDINATES_JACOBI) {

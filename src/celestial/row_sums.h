@@ -40,6 +40,19 @@ typedef struct {
   v4i real;       /* lanes that are bodies (not padding) */
 } chunk;
 
+/* Bodies k..k+3; padding lanes (past n) read as 0, whatever the arrays hold. */
+static inline chunk load_chunk(size_t n, size_t k, const double *x, const double *y,
+                               const double *z, const double *m, double G) {
+  chunk c;
+  const v4i index = {(long long)k, (long long)k + 1, (long long)k + 2, (long long)k + 3};
+  c.real = index < (long long)n;
+  c.x = (v4)((v4i)v4_load(x + k) & c.real);
+  c.y = (v4)((v4i)v4_load(y + k) & c.real);
+  c.z = (v4)((v4i)v4_load(z + k) & c.real);
+  c.gm = (v4)((v4i)(v4_splat(G) * v4_load(m + k)) & c.real);
+  return c;
+}
+
 /* The pairs (lane l of A, lane (l + r) mod 4 of B), those in `use`: A's pull sums into (ax,
  * ay, az), the reactions on B, rotated back into B's lane order, into (bx, by, bz). */
 static inline void pairs(const chunk *A, const chunk *B, int r, v4i use, v4 *ax, v4 *ay,
@@ -69,13 +82,7 @@ int ROW_SUMS(size_t n, size_t np, const double *x, const double *y, const double
   /* accumulators of the chunks, whole vectors in acc (x, y, z of chunk c at 12c) */
   for (size_t c = 0; c < 3 * nc; ++c) memcpy(acc + 4 * c, &zero, sizeof zero);
   for (size_t ca = 0; ca < nc; ++ca) {
-    chunk A;
-    const v4i ia = {(long long)(4 * ca), (long long)(4 * ca + 1), (long long)(4 * ca + 2),
-                    (long long)(4 * ca + 3)};
-    A.real = ia < (long long)n; /* padding lanes read as 0, whatever the arrays hold */
-    A.x = (v4)((v4i)v4_load(x + 4 * ca) & A.real), A.y = (v4)((v4i)v4_load(y + 4 * ca) & A.real);
-    A.z = (v4)((v4i)v4_load(z + 4 * ca) & A.real);
-    A.gm = (v4)((v4i)(v4_splat(G) * v4_load(m + 4 * ca)) & A.real);
+    const chunk A = load_chunk(n, 4 * ca, x, y, z, m, G);
     v4 ax = v4_load(acc + 12 * ca), ay = v4_load(acc + 12 * ca + 4),
        az = v4_load(acc + 12 * ca + 8);
     /* within the chunk: rotation 1 gives pairs (0,1), (1,2), (2,3), (3,0); rotation 2 gives
@@ -83,14 +90,7 @@ int ROW_SUMS(size_t n, size_t np, const double *x, const double *y, const double
     pairs(&A, &A, 1, all, &ax, &ay, &az, &ax, &ay, &az, &coincide);
     pairs(&A, &A, 2, first2, &ax, &ay, &az, &ax, &ay, &az, &coincide);
     for (size_t cb = ca + 1; cb < nc; ++cb) {
-      chunk B;
-      const v4i ib = {(long long)(4 * cb), (long long)(4 * cb + 1), (long long)(4 * cb + 2),
-                      (long long)(4 * cb + 3)};
-      B.real = ib < (long long)n;
-      B.x = (v4)((v4i)v4_load(x + 4 * cb) & B.real);
-      B.y = (v4)((v4i)v4_load(y + 4 * cb) & B.real);
-      B.z = (v4)((v4i)v4_load(z + 4 * cb) & B.real);
-      B.gm = (v4)((v4i)(v4_splat(G) * v4_load(m + 4 * cb)) & B.real);
+      const chunk B = load_chunk(n, 4 * cb, x, y, z, m, G);
       v4 bx = v4_load(acc + 12 * cb), by = v4_load(acc + 12 * cb + 4),
          bz = v4_load(acc + 12 * cb + 8);
       pairs(&A, &B, 0, all, &ax, &ay, &az, &bx, &by, &bz, &coincide);
