@@ -60,8 +60,9 @@ void KEPLER_SHORT(size_t count, const double *mu, double dt, const double *x, co
   for (size_t i = 0; i < count; ++i) done[i] = 0;
   if (!any) return;
   for (size_t i = 0; i < np; ++i) { /* G at s0 and Householder's fourth-order step */
-    /* c2 = Σ_{j<6} y^j/(2j+2)!, c3 = Σ_{j<6} y^j/(2j+3)!, y = −β s0², by Estrin's scheme (pairs of
-     * terms, then y²): half the dependent multiply-adds of Horner's rule on this latency chain */
+    /* c2 = Σ_{j<6} y^j/(2j+2)!, c3 = Σ_{j<6} y^j/(2j+3)!, y = −β s0², by Estrin's scheme (Estrin,
+     * Proc. Western Joint Computer Conf. 1960, 33: pairs of terms, then y²): half the dependent
+     * multiply-adds of Horner's rule on this latency chain */
     const vd y = -(beta[i] * s0[i] * s0[i]), y2 = y * y;
     const double *c = gm_inverse_factorial;
     const vd c2 = (c[0] + c[2] * y) + y2 * ((c[4] + c[6] * y) + y2 * (c[8] + c[10] * y));
