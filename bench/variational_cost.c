@@ -1,7 +1,7 @@
 /* Cost per step of the variational Galerkin integrators against Gauss collocation of the same
  * order, on the same problem in one run: vi-galerkin-gauss-s with its default solver (on this
  * separable problem: Gauss collocation's fixed-point iteration on positions, the fast path of
- * src/methods/variational.c) against gauss-s with its default solver and with its
+ * src/methods/variational/variational.c) against gauss-s with its default solver and with its
  * positions-only fixed-point iteration named explicitly (since issue 17 the same thing), on
  * 16 bodies with softened gravity (the library's n-body model: 48 degrees of freedom). Both
  * compute the same trajectory to round-off (tests/invariants/test_variational.c), so the ratio

@@ -1,5 +1,5 @@
 /* The integrator driver: owns the state and the loop (fixed steps, exact final time),
- * compensated summation, observers and statistics. Steppers live in src/methods. */
+ * compensated summation, observers and statistics. Steppers live in src/methods/<family>/. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>

@@ -6,7 +6,7 @@
  * (err_default / err_other)^(1/p) ≤ 1.10 for a row of order p. Where the default loses at all
  * (yoshida-6 and yoshida-8 on the solar system; sofroniou-spaletta-10, which keeps velocity
  * Verlet for its observable order, on Kepler) it loses by less than that; everywhere else it
- * wins (src/methods/composition_table.c, docs/work-precision.md). */
+ * wins (src/methods/composition/composition_table.c, docs/work-precision.md). */
 #include "test_util.h"
 
 #define KEPLER_T_END (200.0 * 6.283185307179586)

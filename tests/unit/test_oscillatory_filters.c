@@ -16,7 +16,7 @@
 #include "test_util.h"
 
 #include "methods/internal.h"
-#include "methods/oscillatory.h"
+#include "methods/oscillatory/oscillatory.h"
 
 static double sinc(double x) { return x == 0.0 ? 1.0 : sin(x) / x; }
 

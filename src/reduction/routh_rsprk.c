@@ -11,7 +11,7 @@
 #include <string.h>
 
 #include "core/internal.h"
-#include "methods/routh_internal.h"
+#include "reduction/internal.h"
 
 struct gm_rsprk {
   gm_routh_system sys;

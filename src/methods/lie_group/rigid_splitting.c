@@ -10,7 +10,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "methods/lie_group.h"
+#include "methods/lie_group/lie_group.h"
 
 /* Turn about body axis a by ω = τ Π_a/I_a: Π ← exp(−ω ê_a) Π, E ← (I + E) exp(ω ê_a) − I. */
 static void rotate_about_axis(const gm_lie_work *w, int a, double tau, double *pi, double e[9]) {

@@ -7,7 +7,7 @@
 
 #include "core/internal.h"
 #include "geomint/reduction.h"
-#include "methods/routh_internal.h"
+#include "reduction/internal.h"
 
 #define MAXN (GM_ROUTH_MAX_GROUP + GM_ROUTH_MAX_SHAPE)
 

@@ -1,7 +1,7 @@
 /* Lie group integrators for rigid bodies on SO(3) (× R³) as method rows. The state is
  * (R, x, Π, p) (geomint/ode.h, GM_PROBLEM_RIGID_BODY); every row keeps R on SO(3) by
  * construction (products of exact rotations; no projection anywhere). */
-#include "methods/lie_group.h"
+#include "methods/lie_group/lie_group.h"
 
 #define RIGID GM_PROBLEM_RIGID_BODY
 

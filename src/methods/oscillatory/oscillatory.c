@@ -35,7 +35,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "methods/oscillatory.h"
+#include "methods/oscillatory/oscillatory.h"
 
 typedef struct {
   const gm_osc_scheme *scheme;

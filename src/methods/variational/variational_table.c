@@ -4,7 +4,7 @@
  * is (q, p) with p the discrete momentum p_k = −D₁L_d(q_k, q_{k+1}) = D₂L_d(q_{k−1}, q_k).
  * n_stages is the number of quadrature points; gm_method_tableau gives the equivalent
  * partitioned Runge–Kutta tableau (seed 001 Thm 2.12). */
-#include "methods/variational_internal.h"
+#include "methods/variational/variational_internal.h"
 
 #define VI_FLAGS (GM_SYMPLECTIC | GM_SYMMETRIC | GM_IMPLICIT)
 #define VI_ACCEPTS (GM_PROBLEM_SEPARABLE | GM_PROBLEM_LAGRANGIAN)

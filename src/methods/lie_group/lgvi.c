@@ -16,7 +16,7 @@
 #include <float.h>
 #include <math.h>
 
-#include "methods/lie_group.h"
+#include "methods/lie_group/lie_group.h"
 
 /* a'(θ)/θ = (θ cos θ − sin θ)/θ³ and b'(θ)/θ = (θ sin θ − 2(1 − cos θ))/θ⁴ (for the Jacobian
  * only: series below θ = 0.1 are accurate to 1e-9, enough for Newton's convergence) */

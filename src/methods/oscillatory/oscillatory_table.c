@@ -8,7 +8,7 @@
  * are symplectic by construction (a discrete Lagrangian generates them). */
 #include <math.h>
 
-#include "methods/oscillatory.h"
+#include "methods/oscillatory/oscillatory.h"
 
 static double one(double xi) {
   (void)xi;

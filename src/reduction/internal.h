@@ -1,6 +1,6 @@
 /* Private helpers of the Routh reduction files (routh.c, routh_rsprk.c, routh_discrete.c). */
-#ifndef GM_METHODS_ROUTH_INTERNAL_H
-#define GM_METHODS_ROUTH_INTERNAL_H
+#ifndef GM_REDUCTION_INTERNAL_H
+#define GM_REDUCTION_INTERNAL_H
 
 #include "geomint/reduction.h"
 

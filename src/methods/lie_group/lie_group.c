@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "methods/lie_group.h"
+#include "methods/lie_group/lie_group.h"
 
 gm_status gm_lie_gradient(gm_integrator *it, double t, const double *r, const double *x,
                           double g[3], double fx[3]) {

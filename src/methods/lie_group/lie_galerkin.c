@@ -29,7 +29,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "methods/lie_group.h"
+#include "methods/lie_group/lie_group.h"
 
 /* c2'(θ)/θ and c3'(θ)/θ for c2 = (1 − cos θ)/θ², c3 = (θ − sin θ)/θ³:
  *   c2'/θ = Σ_{k≥1} (−1)^k 2k θ^{2k−2}/(2k+2)!,  c3'/θ = Σ_{k≥1} (−1)^k 2k θ^{2k−2}/(2k+3)!

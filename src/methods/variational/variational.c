@@ -23,7 +23,7 @@
 #include <string.h>
 
 #include "geomint/variational.h"
-#include "methods/variational_internal.h"
+#include "methods/variational/variational_internal.h"
 
 /* ---- the equivalent partitioned Runge–Kutta tableaus (seed 001 Thm 2.12) ---------------- */
 

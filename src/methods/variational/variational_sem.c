@@ -30,7 +30,7 @@
 #include <string.h>
 
 #include "geomint/variational.h"
-#include "methods/variational_internal.h"
+#include "methods/variational/variational_internal.h"
 
 #define EPS 2.220446049250313e-16
 #define SEM_MAX_ITERATIONS 40

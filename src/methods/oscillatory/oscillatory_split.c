@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "methods/oscillatory.h"
+#include "methods/oscillatory/oscillatory.h"
 
 double gm_sinc(double xi) {
   const double x2 = xi * xi;

@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "core/internal.h"
-#include "methods/routh_internal.h"
+#include "reduction/internal.h"
 
 #define MAXN (GM_ROUTH_MAX_GROUP + GM_ROUTH_MAX_SHAPE)
 
