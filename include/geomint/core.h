@@ -38,10 +38,21 @@ typedef enum {
 const char *gm_strerror(gm_status status);
 
 /* Creators that fail before an object exists write the reason here (when non-NULL). */
-#define GM_ERRMSG_SIZE 256
+#define GM_ERRMSG_SIZE 512
 typedef struct gm_error {
   char message[GM_ERRMSG_SIZE];
 } gm_error;
+
+/* ---- "did you mean" -------------------------------------------------------------------- */
+
+/* The i-th candidate name, NULL past the end. */
+typedef const char *(*gm_name_at)(const void *ctx, size_t i);
+/* Restricted Damerau–Levenshtein distance of two names (case-insensitive, at most 64 characters
+ * of each are compared). */
+size_t gm_edit_distance(const char *a, const char *b);
+/* Writes the (at most five) candidates closest to query as "a, b, c" into buf; returns how many
+ * (0: none close enough to be worth suggesting). */
+size_t gm_suggest(const char *query, gm_name_at name_at, const void *ctx, char *buf, size_t cap);
 
 /* ---- dense linear algebra (LAPACKE) ---------------------------------------------------- */
 

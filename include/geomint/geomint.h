@@ -13,6 +13,7 @@
 #include "geomint/mimetic.h"
 #include "geomint/variational.h"
 #include "geomint/fields.h"
+#include "geomint/yee_scene.h"
 #include "geomint/lie.h"
 #include "geomint/oscillatory.h"
 #include "geomint/celestial.h"

@@ -76,12 +76,7 @@ int cli_check_step_count(const char *command, double span, double dt);
 
 /* ---- suggestions (suggest.c) ------------------------------------------------------------ */
 /* The i-th candidate name, NULL past the end. */
-typedef const char *(*cli_name_at)(const void *ctx, size_t i);
-/* Restricted Damerau–Levenshtein distance (case-insensitive). */
-size_t cli_edit_distance(const char *a, const char *b);
-/* Write the names closest to query as "a, b, c" into buf; returns how many. */
-size_t cli_suggest(const char *query, cli_name_at name_at, const void *ctx, char *buf,
-                   size_t cap);
+typedef gm_name_at cli_name_at;
 const char *cli_method_name_at(const void *ctx, size_t i);
 const char *cli_problem_name_at(const void *ctx, size_t i);
 /* "unknown KIND 'query'; did you mean: a, b?" or a hint where to look, on stderr. */

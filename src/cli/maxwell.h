@@ -1,4 +1,5 @@
-/* Private to the `geomint maxwell` command: the JSON scene (maxwell_scene.c), the runs
+/* Private to the `geomint maxwell` command: the runs (the scene file is read by the library,
+ * geomint/yee_scene.h:
  * (maxwell_run.c, maxwell_cavity.c, maxwell_e4.c) and their plots (maxwell_plot.c). */
 #ifndef GM_CLI_MAXWELL_H
 #define GM_CLI_MAXWELL_H
@@ -7,61 +8,7 @@
 #include <stdio.h>
 
 #include "cli/cli.h"
-
-#define MX_NAME_CAP 64
-
-typedef struct mx_probe {
-  char name[MX_NAME_CAP];
-  gm_yee_component component;
-  double x[3];
-} mx_probe;
-
-typedef struct mx_flux {
-  char name[MX_NAME_CAP];
-  int axis;
-  double position; /* coordinate along axis; the nearest vertex plane is used */
-  size_t index;    /* that plane's index, set by mx_scene_build */
-} mx_flux;
-
-typedef struct mx_scene {
-  gm_yee_grid grid;
-  gm_yee_options options;
-  gm_yee_materials *materials;    /* owned */
-  size_t n_points, n_planes;
-  gm_point_source *points;        /* owned */
-  gm_plane_wave *planes;          /* owned */
-  size_t *point_json, *plane_json; /* owned: index of each in the JSON "sources" array */
-  size_t n_obliques;
-  gm_oblique_wave *obliques;      /* owned: plane waves given by angles */
-  size_t *oblique_json;           /* owned: as point_json */
-  size_t n_probes, n_fluxes;
-  mx_probe *probes;               /* owned */
-  mx_flux *fluxes;                /* owned */
-  /* run */
-  size_t steps;                   /* > 0: this many steps */
-  double time;                    /* steps == 0: advance to this time */
-  /* output */
-  size_t snapshot_every;          /* 0: no snapshots */
-  unsigned snapshot_formats;      /* GM_SNAPSHOT_VTI | GM_SNAPSHOT_HDF5 */
-  gm_vti_encoding encoding;
-  int snapshot_materials;         /* write ε, μ, σ into the snapshots */
-  size_t energy_every;            /* 0: no energy series */
-  int harminv;                    /* resonances of the probe signals */
-  double harminv_fmin, harminv_fmax, harminv_after;
-} mx_scene;
-
-/* Read and check a scene file. On failure returns CLI_EXIT_USAGE after writing
- * "FILE: json.path: what is wrong" (one line) into msg. */
-int mx_scene_load(const char *path, mx_scene *scene, char *msg, size_t cap);
-/* The same from a JSON text (name is used in messages). */
-int mx_scene_parse(const char *text, const char *name, mx_scene *scene, char *msg, size_t cap);
-void mx_scene_clear(mx_scene *scene);
-/* Create the solver with the scene's sources and probes (probe capacity for the whole run).
- * Errors the library reports (a source outside the grid, a PML thicker than the grid, a step
- * above the Courant limit) come back as CLI_EXIT_USAGE with the JSON path of the culprit. */
-int mx_scene_build(mx_scene *scene, const char *name, gm_yee **out, char *msg, size_t cap);
-/* Steps the run makes (from steps or time). */
-size_t mx_scene_total_steps(const mx_scene *scene, double dt);
+#include "geomint/yee_scene.h"
 
 /* The usage text of `geomint maxwell` (maxwell.c). */
 const char *mx_usage(void);

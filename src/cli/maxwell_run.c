@@ -34,7 +34,7 @@ static void series_free(series *s) {
 }
 
 typedef struct run_state {
-  mx_scene *scene;
+  gm_yee_scene *scene;
   series energy, flux;
   gm_status flux_status;
 } run_state;
@@ -62,7 +62,7 @@ static int observe_flux(void *ctx, const gm_yee *solver) {
   if (s->n >= s->cap || gm_yee_step(solver) == 0) return 0;
   s->t[s->n] = gm_yee_time_e(solver);
   for (size_t k = 0; k < r->scene->n_fluxes; ++k) {
-    const mx_flux *f = &r->scene->fluxes[k];
+    const gm_yee_scene_flux *f = &r->scene->fluxes[k];
     gm_status st = gm_yee_poynting_flux(solver, f->axis, f->index, &s->values[s->n * s->width + k]);
     if (st != GM_OK) {
       r->flux_status = st;
@@ -96,7 +96,7 @@ static int write_series_csv(const char *path, const char *const *names, const se
 
 /* probes.csv: t (the time of H, t_n), t_e (the time of E, t_n − Δt/2), one column per probe
  * (each sampled at its own component's time). */
-static int write_probes_csv(const char *path, const mx_scene *sc, const gm_yee *solver) {
+static int write_probes_csv(const char *path, const gm_yee_scene *sc, const gm_yee *solver) {
   size_t np = sc->n_probes;
   const char **names = malloc((np + 1) * sizeof *names);
   double *row = malloc((np + 1) * sizeof *row);
@@ -157,7 +157,7 @@ typedef struct probe_result {
   char error[256];
 } probe_result;
 
-static void print_text(const char *path, const mx_scene *sc, const gm_yee *solver, double wall,
+static void print_text(const char *path, const gm_yee_scene *sc, const gm_yee *solver, double wall,
                        size_t steps, const probe_result *pr, const double *flux_integral,
                        const run_state *r, const char *out_dir, size_t n_snapshots) {
   size_t n_arrays = 0, bytes = gm_yee_memory(solver, &n_arrays);
@@ -210,7 +210,7 @@ static void print_text(const char *path, const mx_scene *sc, const gm_yee *solve
          "energy, flux or snapshots asked for)");
 }
 
-static int print_json(const char *path, const mx_scene *sc, const gm_yee *solver, double wall,
+static int print_json(const char *path, const gm_yee_scene *sc, const gm_yee *solver, double wall,
                       size_t steps, const probe_result *pr, const double *flux_integral,
                       const run_state *r, const char *out_dir, size_t n_snapshots) {
   size_t n_arrays = 0, bytes = gm_yee_memory(solver, &n_arrays);
@@ -268,8 +268,8 @@ static int print_json(const char *path, const mx_scene *sc, const gm_yee *solver
   return cli_json_print(o);
 }
 
-static int print_check(const char *path, const mx_scene *sc, const gm_yee *solver, int json) {
-  size_t steps = mx_scene_total_steps(sc, gm_yee_dt(solver));
+static int print_check(const char *path, const gm_yee_scene *sc, const gm_yee *solver, int json) {
+  size_t steps = gm_yee_scene_total_steps(sc, gm_yee_dt(solver));
   size_t n_arrays = 0, bytes = gm_yee_memory(solver, &n_arrays);
   if (json) {
     cJSON *o = cJSON_CreateObject();
@@ -298,7 +298,7 @@ static int print_check(const char *path, const mx_scene *sc, const gm_yee *solve
 /* A colour map of component `field` at the final state: the grid in 2-D, the middle z slice
  * in 3-D, the x axis stretched to a strip in 1-D. */
 static int plot_final(const char *png, const char *field, const char *scene_path,
-                      const mx_scene *sc, const gm_yee *solver) {
+                      const gm_yee_scene *sc, const gm_yee *solver) {
   gm_yee_component c;
   if (gm_yee_component_find(field, &c) != GM_OK || !gm_yee_dim_has(sc->grid.dim, c)) {
     cli_error(COMMAND, "--plot-field %s: not a component of this grid", field);
@@ -353,29 +353,27 @@ int mx_run_main(int argc, char **argv) {
     return CLI_EXIT_USAGE;
   }
   if (plot != NULL && cli_plot_check_output(COMMAND, plot) != CLI_EXIT_OK) return CLI_EXIT_USAGE;
-  mx_scene scene;
-  char msg[1024];
-  status = mx_scene_load(path, &scene, msg, sizeof msg);
-  if (status != CLI_EXIT_OK) {
-    cli_error(COMMAND, "%s", msg);
-    return status;
+  gm_yee_scene scene;
+  gm_error scene_err = {{0}};
+  if (gm_yee_scene_load(path, &scene, &scene_err) != GM_OK) {
+    cli_error(COMMAND, "%s", scene_err.message);
+    return CLI_EXIT_USAGE;
   }
   if (threads > 0) scene.options.n_threads = (int)threads;
   gm_yee *solver = NULL;
-  status = mx_scene_build(&scene, path, &solver, msg, sizeof msg);
-  if (status != CLI_EXIT_OK) {
-    cli_error(COMMAND, "%s", msg);
-    mx_scene_clear(&scene);
-    return status;
+  if (gm_yee_scene_build(&scene, path, &solver, &scene_err) != GM_OK) {
+    cli_error(COMMAND, "%s", scene_err.message);
+    gm_yee_scene_clear(&scene);
+    return CLI_EXIT_USAGE;
   }
   if (check) {
     status = print_check(path, &scene, solver, json);
     gm_yee_free(solver);
-    mx_scene_clear(&scene);
+    gm_yee_scene_clear(&scene);
     return status;
   }
   status = mx_make_dir(COMMAND, out_dir);
-  size_t steps = mx_scene_total_steps(&scene, gm_yee_dt(solver));
+  size_t steps = gm_yee_scene_total_steps(&scene, gm_yee_dt(solver));
   run_state r;
   memset(&r, 0, sizeof r);
   r.scene = &scene;
@@ -482,6 +480,6 @@ int mx_run_main(int argc, char **argv) {
   series_free(&r.flux);
   gm_yee_writer_free(writer);
   gm_yee_free(solver);
-  mx_scene_clear(&scene);
+  gm_yee_scene_clear(&scene);
   return status;
 }

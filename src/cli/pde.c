@@ -127,7 +127,7 @@ static int b10_one(const b10_run *r, const char *dir, char *summary, size_t cap)
     snprintf(summary, cap, "%-3s dt/dx = %g: bounded to t = %g (max|u| %.3f, max relative "
              "energy change %.2e)", r->scheme, r->ratio, gm_pde_time(p), max_abs_u(p), emax);
   else if (strcmp(outcome, "failed") == 0)
-    snprintf(summary, cap, "%-3s dt/dx = %g: fails at step %zu (t = %g): %s", r->scheme,
+    snprintf(summary, cap, "%-3s dt/dx = %g: fails at step %zu (t = %g): %.300s", r->scheme,
              r->ratio, k + 1, (double)(k + 1) * dt, err.message);
   else
     snprintf(summary, cap, "%-3s dt/dx = %g: |u| > 100 at step %zu (t = %g)", r->scheme,

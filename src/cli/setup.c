@@ -157,7 +157,7 @@ int cli_open_model(const char *command, const char *name, const cli_settings *se
       setting_names s = {info, {0}};
       char list[512], what[96];
       snprintf(what, sizeof what, "parameter of %s", name);
-      if (cli_suggest(key, setting_name_at, &s, list, sizeof list) > 0)
+      if (gm_suggest(key, setting_name_at, &s, list, sizeof list) > 0)
         cli_error(command, "unknown %s '%s'; did you mean: %s?", what, key, list);
       else
         model_error(command, name, item, gm_model_errmsg(model));

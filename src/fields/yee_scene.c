@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli/maxwell.h"
+#include "geomint/yee_scene.h"
 
 /* ---- the JSON path of the value being read ----------------------------------------------- */
 
@@ -80,7 +80,7 @@ static int check_keys(parser *p, const cJSON *obj, const char *const *known) {
     const char *best = NULL;
     size_t best_d = 3;
     for (size_t k = 0; known[k] != NULL; ++k) {
-      size_t d = cli_edit_distance(item->string, known[k]);
+      size_t d = gm_edit_distance(item->string, known[k]);
       if (d < best_d) best_d = d, best = known[k];
     }
     size_t old = push_key(p, item->string);
@@ -265,7 +265,7 @@ static int get_axis(parser *p, const cJSON *obj, const char *key, size_t axes, i
 
 /* ---- sections ---------------------------------------------------------------------------- */
 
-static int parse_grid(parser *p, const cJSON *root, mx_scene *s) {
+static int parse_grid(parser *p, const cJSON *root, gm_yee_scene *s) {
   const cJSON *g;
   if (get_object(p, root, "grid", 1, &g) != 0) return -1;
   size_t old = push_key(p, "grid");
@@ -342,9 +342,9 @@ static int parse_medium(parser *p, const cJSON *obj, gm_medium *m) {
 /* Calls one(p, item, i, s) for each element i of the array list, with the JSON path
    "key[i]" pushed so that errors name it; an element that is not an object is an error. Stops
    at the first failure. */
-typedef int (*element_fn)(parser *p, const cJSON *item, size_t i, mx_scene *s);
+typedef int (*element_fn)(parser *p, const cJSON *item, size_t i, gm_yee_scene *s);
 static int for_each_object(parser *p, const cJSON *list, const char *key, element_fn one,
-                           mx_scene *s) {
+                           gm_yee_scene *s) {
   size_t old = push_key(p, key);
   size_t i = 0;
   const cJSON *item;
@@ -364,7 +364,7 @@ static int for_each_object(parser *p, const cJSON *list, const char *key, elemen
 static int lib_fail(parser *p, const char *what) { return fail(p, "%s", what); }
 
 /* One element of "materials": a shape painted with a medium. */
-static int parse_material(parser *p, const cJSON *item, size_t i, mx_scene *s) {
+static int parse_material(parser *p, const cJSON *item, size_t i, gm_yee_scene *s) {
   (void)i;
   const size_t axes = gm_yee_dim_axes(s->grid.dim);
   const char *shape = NULL;
@@ -411,7 +411,7 @@ static int parse_material(parser *p, const cJSON *item, size_t i, mx_scene *s) {
   return rc;
 }
 
-static int parse_materials(parser *p, const cJSON *root, mx_scene *s) {
+static int parse_materials(parser *p, const cJSON *root, gm_yee_scene *s) {
   gm_error err = {{0}};
   if (gm_yee_materials_create(&s->grid, &s->materials, &err) != GM_OK) return lib_fail(p, err.message);
   const cJSON *bg;
@@ -459,7 +459,7 @@ static int boundary_kind(parser *p, const cJSON *v, gm_yee_boundary_kind *out) {
   return 0;
 }
 
-static int parse_boundaries(parser *p, const cJSON *root, mx_scene *s) {
+static int parse_boundaries(parser *p, const cJSON *root, gm_yee_scene *s) {
   gm_cpml pml;
   if (parse_pml(p, root, &pml) != 0) return -1;
   const cJSON *obj;
@@ -569,7 +569,7 @@ static int parse_oblique(parser *p, const cJSON *item, size_t axes, gm_oblique_w
 }
 
 /* One element of "sources": a point source or a plane wave (axis-aligned or oblique). */
-static int parse_source(parser *p, const cJSON *item, size_t i, mx_scene *s) {
+static int parse_source(parser *p, const cJSON *item, size_t i, gm_yee_scene *s) {
   const size_t axes = gm_yee_dim_axes(s->grid.dim);
   const char *type = NULL;
   int rc = get_string(p, item, "type", 1, &type) != 0 ? -1 : 0;
@@ -639,7 +639,7 @@ static int parse_source(parser *p, const cJSON *item, size_t i, mx_scene *s) {
   return rc;
 }
 
-static int parse_sources(parser *p, const cJSON *root, mx_scene *s) {
+static int parse_sources(parser *p, const cJSON *root, gm_yee_scene *s) {
   const cJSON *list;
   int rc = get_array(p, root, "sources", &list);
   if (rc != 0) return rc < 0 ? -1 : 0;
@@ -657,10 +657,10 @@ static int parse_sources(parser *p, const cJSON *root, mx_scene *s) {
 }
 
 /* One element of "probes". */
-static int parse_probe(parser *p, const cJSON *item, size_t i, mx_scene *s) {
+static int parse_probe(parser *p, const cJSON *item, size_t i, gm_yee_scene *s) {
   const size_t axes = gm_yee_dim_axes(s->grid.dim);
   int rc = 0;
-  mx_probe *pr = &s->probes[s->n_probes];
+  gm_yee_scene_probe *pr = &s->probes[s->n_probes];
   const char *name = NULL;
   static const char *const keys[] = {"name", "component", "position", NULL};
   if (check_keys(p, item, keys) != 0 ||
@@ -683,7 +683,7 @@ static int parse_probe(parser *p, const cJSON *item, size_t i, mx_scene *s) {
   return rc;
 }
 
-static int parse_probes(parser *p, const cJSON *root, mx_scene *s) {
+static int parse_probes(parser *p, const cJSON *root, gm_yee_scene *s) {
   const cJSON *list;
   int rc = get_array(p, root, "probes", &list);
   if (rc != 0) return rc < 0 ? -1 : 0;
@@ -693,10 +693,10 @@ static int parse_probes(parser *p, const cJSON *root, mx_scene *s) {
 }
 
 /* One element of "flux": a plane whose Poynting flux is recorded. */
-static int parse_flux(parser *p, const cJSON *item, size_t i, mx_scene *s) {
+static int parse_flux(parser *p, const cJSON *item, size_t i, gm_yee_scene *s) {
   const size_t axes = gm_yee_dim_axes(s->grid.dim);
   int rc = 0;
-  mx_flux *fl = &s->fluxes[s->n_fluxes];
+  gm_yee_scene_flux *fl = &s->fluxes[s->n_fluxes];
   const char *name = NULL;
   static const char *const keys[] = {"name", "axis", "position", NULL};
   if (check_keys(p, item, keys) != 0 || get_axis(p, item, "axis", axes, &fl->axis) != 0 ||
@@ -726,7 +726,7 @@ static int parse_flux(parser *p, const cJSON *item, size_t i, mx_scene *s) {
   return rc;
 }
 
-static int parse_fluxes(parser *p, const cJSON *root, mx_scene *s) {
+static int parse_fluxes(parser *p, const cJSON *root, gm_yee_scene *s) {
   const cJSON *list;
   int rc = get_array(p, root, "flux", &list);
   if (rc != 0) return rc < 0 ? -1 : 0;
@@ -735,7 +735,7 @@ static int parse_fluxes(parser *p, const cJSON *root, mx_scene *s) {
   return for_each_object(p, list, "flux", parse_flux, s);
 }
 
-static int parse_output(parser *p, const cJSON *root, mx_scene *s) {
+static int parse_output(parser *p, const cJSON *root, gm_yee_scene *s) {
   s->encoding = GM_VTI_APPENDED;
   s->snapshot_formats = GM_SNAPSHOT_VTI;
   const cJSON *obj;
@@ -803,7 +803,7 @@ static int parse_output(parser *p, const cJSON *root, mx_scene *s) {
   return rc;
 }
 
-static int parse_run(parser *p, const cJSON *root, mx_scene *s) {
+static int parse_run(parser *p, const cJSON *root, gm_yee_scene *s) {
   const cJSON *obj;
   if (get_object(p, root, "run", 1, &obj) != 0) return -1;
   size_t old = push_key(p, "run");
@@ -841,7 +841,10 @@ static int parse_run(parser *p, const cJSON *root, mx_scene *s) {
   return rc;
 }
 
-int mx_scene_parse(const char *text, const char *name, mx_scene *s, char *msg, size_t cap) {
+gm_status gm_yee_scene_parse(const char *text, const char *name, gm_yee_scene *s,
+                             gm_error *err) {
+  char *msg = err->message;
+  size_t cap = sizeof err->message;
   memset(s, 0, sizeof *s);
   s->options = gm_yee_defaults();
   parser p = {{0}, 0, msg, cap, name};
@@ -857,7 +860,7 @@ int mx_scene_parse(const char *text, const char *name, mx_scene *s, char *msg, s
         ++col;
     }
     snprintf(msg, cap, "%s: line %zu, column %zu: not valid JSON", name, line, col);
-    return CLI_EXIT_USAGE;
+    return GM_EINVAL;
   }
   int rc = 0;
   if (!cJSON_IsObject(root)) rc = fail(&p, "expected an object, got %s", type_name(root));
@@ -880,18 +883,20 @@ int mx_scene_parse(const char *text, const char *name, mx_scene *s, char *msg, s
   }
   cJSON_Delete(root);
   if (rc != 0) {
-    mx_scene_clear(s);
-    return CLI_EXIT_USAGE;
+    gm_yee_scene_clear(s);
+    return GM_EINVAL;
   }
-  return CLI_EXIT_OK;
+  return GM_OK;
 }
 
-int mx_scene_load(const char *path, mx_scene *s, char *msg, size_t cap) {
+gm_status gm_yee_scene_load(const char *path, gm_yee_scene *s, gm_error *err) {
+  char *msg = err->message;
+  size_t cap = sizeof err->message;
   memset(s, 0, sizeof *s);
   FILE *f = fopen(path, "rb");
   if (f == NULL) {
     snprintf(msg, cap, "cannot open %s: %s", path, strerror(errno));
-    return CLI_EXIT_USAGE;
+    return GM_EIO;
   }
   size_t len = 0, size = 4096;
   char *text = malloc(size);
@@ -912,15 +917,15 @@ int mx_scene_load(const char *path, mx_scene *s, char *msg, size_t cap) {
   fclose(f);
   if (text == NULL) {
     snprintf(msg, cap, "%s: too large or out of memory", path);
-    return CLI_EXIT_USAGE;
+    return GM_ENOMEM;
   }
   text[len] = '\0';
-  int rc = mx_scene_parse(text, path, s, msg, cap);
+  gm_status rc = gm_yee_scene_parse(text, path, s, err);
   free(text);
   return rc;
 }
 
-void mx_scene_clear(mx_scene *s) {
+void gm_yee_scene_clear(gm_yee_scene *s) {
   gm_yee_materials_free(s->materials);
   free(s->points);
   free(s->planes);
@@ -933,45 +938,48 @@ void mx_scene_clear(mx_scene *s) {
   memset(s, 0, sizeof *s);
 }
 
-size_t mx_scene_total_steps(const mx_scene *s, double dt) {
+size_t gm_yee_scene_total_steps(const gm_yee_scene *s, double dt) {
   if (s->steps > 0) return s->steps;
   return (size_t)floor(s->time / dt * (1.0 + 1e-12));
 }
 
-int mx_scene_build(mx_scene *s, const char *name, gm_yee **out, char *msg, size_t cap) {
+gm_status gm_yee_scene_build(gm_yee_scene *s, const char *name, gm_yee **out,
+                             gm_error *error) {
+  char *msg = error->message;
+  size_t cap = sizeof error->message;
   *out = NULL;
   gm_error err = {{0}};
   gm_yee *solver = NULL;
   if (gm_yee_create(&s->grid, s->materials, &s->options, &solver, &err) != GM_OK) {
-    snprintf(msg, cap, "%s: %s", name, err.message);
-    return CLI_EXIT_USAGE;
+    snprintf(msg, cap, "%s: %.400s", name, err.message);
+    return GM_EINVAL;
   }
-  size_t steps = mx_scene_total_steps(s, gm_yee_dt(solver));
+  size_t steps = gm_yee_scene_total_steps(s, gm_yee_dt(solver));
   for (size_t k = 0; k < s->n_points; ++k)
     if (gm_yee_add_point_source(solver, &s->points[k], NULL) != GM_OK) {
       snprintf(msg, cap, "%s: sources[%zu]: %s", name, s->point_json[k], gm_yee_errmsg(solver));
       gm_yee_free(solver);
-      return CLI_EXIT_USAGE;
+      return GM_EINVAL;
     }
   for (size_t k = 0; k < s->n_planes; ++k)
     if (gm_yee_add_plane_wave(solver, &s->planes[k], NULL) != GM_OK) {
       snprintf(msg, cap, "%s: sources[%zu]: %s", name, s->plane_json[k], gm_yee_errmsg(solver));
       gm_yee_free(solver);
-      return CLI_EXIT_USAGE;
+      return GM_EINVAL;
     }
   for (size_t k = 0; k < s->n_obliques; ++k)
     if (gm_yee_add_oblique_wave(solver, &s->obliques[k], NULL) != GM_OK) {
       snprintf(msg, cap, "%s: sources[%zu]: %s", name, s->oblique_json[k], gm_yee_errmsg(solver));
       gm_yee_free(solver);
-      return CLI_EXIT_USAGE;
+      return GM_EINVAL;
     }
   for (size_t k = 0; k < s->n_probes; ++k)
     if (gm_yee_add_probe(solver, s->probes[k].component, s->probes[k].x, steps + 1, NULL) !=
         GM_OK) {
       snprintf(msg, cap, "%s: probes[%zu]: %s", name, k, gm_yee_errmsg(solver));
       gm_yee_free(solver);
-      return CLI_EXIT_USAGE;
+      return GM_EINVAL;
     }
   *out = solver;
-  return CLI_EXIT_OK;
+  return GM_OK;
 }
