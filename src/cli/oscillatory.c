@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 
 #include "cli/cli.h"
+#include "geomint/experiments.h"
 
 static const char usage[] =
     "usage: geomint oscillatory EXPERIMENT [--out DIR] [--points N] [--no-plot]\n\n"
@@ -84,109 +85,27 @@ static gm_integrator *start(const gm_model *model, const char *method, size_t su
   return it;
 }
 
-/* ---- E1: resonance ----------------------------------------------------------------------- */
-
-typedef struct {
-  const gm_problem *pb;
-  double h0, max_error;
-} energy_watch;
-
-static int watch_energy(void *ctx, size_t step, double t, const double *y) {
-  (void)step;
-  (void)t;
-  energy_watch *w = ctx;
-  double e = fabs(gm_problem_energy(w->pb, y) - w->h0);
-  if (!(e <= w->max_error)) w->max_error = e; /* NaN wins */
-  return 0;
-}
-
-/* max |H − H0| over T = 1000, h = 0.1; a run that fails (overflow) counts as +inf */
-static double resonance_error(const char *method, double omega, size_t substeps) {
-  gm_model *model = NULL;
-  if (gm_model_create("toy-resonance", &model) != GM_OK) return NAN;
-  gm_model_set(model, "omega", omega);
-  if (gm_model_build(model) != GM_OK) {
-    gm_model_free(model);
-    return NAN;
-  }
-  gm_integrator *it = start(model, method, substeps);
-  if (it == NULL) {
-    gm_model_free(model);
-    return NAN;
-  }
-  energy_watch w = {gm_model_problem(model), 0.5, 0.0};
-  gm_integrator_add_observer(it, watch_energy, &w, 1);
-  gm_status st = gm_integrator_run(it, 10000, 0.1);
-  gm_integrator_free(it);
-  gm_model_free(model);
-  return st == GM_OK && isfinite(w.max_error) ? w.max_error : INFINITY;
-}
-
-static int compare_doubles(const void *a, const void *b) {
-  const double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
+/* ---- E1: resonance (src/experiments/resonance.c) -------------------------------------------- */
 
 static int experiment_resonance(const char *dir, size_t n_points, int plot) {
+  gm_resonance_result r;
+  gm_error err = {{0}};
+  gm_status st = gm_experiment_resonance(n_points, dir, &r, &err);
+  if (st != GM_OK) {
+    cli_error(CMD, "%s", err.message);
+    return st == GM_EINVAL ? CLI_EXIT_USAGE : CLI_EXIT_FAILURE;
+  }
   char csv[4096], script[4096];
   snprintf(csv, sizeof csv, "%s/resonance.csv", dir);
-  FILE *f = open_file(csv);
-  if (f == NULL) return CLI_EXIT_FAILURE;
-  fprintf(f, "omega_h_over_pi,omega,imex,impulse_100\n");
-  double imex_min = INFINITY, imex_max = 0.0, respa_max = 0.0, respa_at = 0.0;
-  size_t respa_spikes = 0, respa_blowups = 0;
-  double spike_near[16];
-  size_t n_near = 0;
-  /* the uniform grid, refined within 0.005 of the integers 1..4, where the resonances of the
-   * impulse method are narrower than the grid */
-  static const double near[] = {-5e-3, -2e-3, -1e-3, -5e-4, -2e-4, -1e-4,
-                                1e-4,  2e-4,  5e-4,  1e-3,  2e-3,  5e-3};
-  const size_t n_near_grid = sizeof near / sizeof near[0], n_total = n_points + 4 * n_near_grid;
-  double *xs = malloc(n_total * sizeof *xs);
-  if (xs == NULL) {
-    fclose(f);
-    return CLI_EXIT_FAILURE;
-  }
-  for (size_t k = 0; k < n_points; ++k) xs[k] = 4.5 * (double)(k + 1) / (double)n_points;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < n_near_grid; ++j) xs[n_points + i * n_near_grid + j] = (double)(i + 1) + near[j];
-  qsort(xs, n_total, sizeof *xs, compare_doubles);
-  for (size_t k = 0; k < n_total; ++k) {
-    const double x = xs[k], omega = x * 3.14159265358979323846 / 0.1;
-    if (k > 0 && x == xs[k - 1]) continue;
-    double ei = resonance_error("imex", omega, 0), er = resonance_error("impulse", omega, 100);
-    if (isnan(ei) || isnan(er)) {
-      fclose(f);
-      free(xs);
-      return CLI_EXIT_FAILURE;
-    }
-    imex_min = fmin(imex_min, ei);
-    imex_max = fmax(imex_max, ei);
-    if (er > respa_max) {
-      respa_max = er;
-      respa_at = x;
-    }
-    if (isinf(er)) ++respa_blowups;
-    if (er > 1.0) { /* a spike: an energy error larger than H0 itself */
-      ++respa_spikes;
-      const double integer = round(x);
-      if ((n_near == 0 || spike_near[n_near - 1] != integer) && n_near < 16)
-        spike_near[n_near++] = integer;
-    }
-    fprintf(f, "%.6f,%.10g,%.6e,%.6e\n", x, omega, ei, isinf(er) ? 1e10 : er);
-  }
-  fclose(f);
-  free(xs);
   printf("resonance (seed 000 Fig 2.1): toy problem, h = 0.1, T = 1000, %zu values of "
          "omega h/pi in (0, 4.5] (+ %zu within 0.005 of 1, 2, 3, 4)\n",
-         n_points, 4 * n_near_grid);
-  printf("  imex:               max |H - H0| from %.4e to %.4e (ratio %.2f)\n", imex_min,
-         imex_max, imex_max / imex_min);
-  printf("  impulse (n = 100):  max |H - H0| up to %s%.3e at omega h/pi = %.4f; %zu values "
+         r.n_points, r.n_near);
+  printf("  imex:               max |H - H0| from %.4e to %.4e (ratio %.2f)\n", r.imex_min,
+         r.imex_max, r.imex_max / r.imex_min);
+  printf("  impulse (n = 100):  max |H - H0| up to %.3e at omega h/pi = %.4f; %zu values "
          "above 1 (%zu blow-ups), near omega h/pi =",
-         isinf(respa_max) ? "" : "", isinf(respa_max) ? INFINITY : respa_max, respa_at,
-         respa_spikes, respa_blowups);
-  for (size_t i = 0; i < n_near; ++i) printf(" %g", spike_near[i]);
+         r.impulse_max, r.impulse_max_at, r.impulse_spikes, r.impulse_blowups);
+  for (size_t i = 0; i < r.n_spike_near; ++i) printf(" %g", r.spike_near[i]);
   printf("\n  data: %s\n", csv);
   if (!plot) return CLI_EXIT_OK;
   snprintf(script, sizeof script, "%s/resonance.gp", dir);
