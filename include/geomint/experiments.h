@@ -90,8 +90,8 @@ void gm_e4_result_clear(gm_e4_result *result);
 /* ---- E1: resonance (seed 000 §2.2, Fig 2.1) --------------------------------------------- */
 
 /* The largest --points the resonance scan accepts: each point is two runs of 10^4 steps (one
- * with 100 substeps), about 3 ms, so this bound is about 5 minutes. */
-#define GM_RESONANCE_MAX_POINTS 100000
+ * with 100 substeps), about 17 ms on one core, so this bound is about 6 minutes. */
+#define GM_RESONANCE_MAX_POINTS 20000
 
 typedef struct gm_resonance_result {
   size_t n_points, n_near;              /* uniform points, refined points near 1, 2, 3, 4 */

@@ -67,9 +67,10 @@ static int list_markdown(void) {
        "|---|---|---|---|---|---|---|");
   for (size_t i = 0; i < gm_experiment_count(); ++i) {
     const gm_experiment_info *e = gm_experiment_at(i);
-    printf("| `%s` | %s | %s | %s | `geomint %s` | %s | [%s](%s) |\n", e->name, e->seed, e->shows,
-           e->seed_result, e->command, e->run_time, e->doc + 5 /* past "docs/" */,
-           e->doc + 5);
+    const char *page = e->doc + 5; /* past "docs/": the links are relative to docs/ */
+    const int page_len = (int)strcspn(page, "#");
+    printf("| `%s` | %s | %s | %s | `geomint %s` | %s | [%.*s](%s) |\n", e->name, e->seed,
+           e->shows, e->seed_result, e->command, e->run_time, page_len, page, page);
   }
   return fflush(stdout) == 0 ? CLI_EXIT_OK : CLI_EXIT_FAILURE;
 }

@@ -33,7 +33,8 @@ static const char usage[] =
     "Writes CSV files and gnuplot scripts into DIR and draws PNG figures; prints a table.\n\n"
     "options:\n"
     "  --out DIR    output directory, created if missing (default oscillatory-output)\n"
-    "  --points N   resonance: number of values of omega h / pi (default 900)\n"
+    "  --points N   resonance: number of values of omega h / pi (default 900, at most 20000:\n"
+    "               about 17 ms each)\n"
     "  --no-plot    write the data only\n";
 
 #define CMD "oscillatory"
@@ -698,8 +699,15 @@ static int oscillatory_main(int argc, char **argv) {
               ex);
     return CLI_EXIT_USAGE;
   }
-  if (points == 0) {
-    cli_error(CMD, "--points must be at least 1");
+  if (points == 0 || points > GM_RESONANCE_MAX_POINTS) {
+    cli_error(CMD,
+              "--points %zu: must be in [1, %d] (each point is two runs of 10^4 steps, about "
+              "17 ms; %d points take about 6 minutes)",
+              points, GM_RESONANCE_MAX_POINTS, GM_RESONANCE_MAX_POINTS);
+    return CLI_EXIT_USAGE;
+  }
+  if (options[1].seen && !all && strcmp(ex, "resonance") != 0) {
+    cli_error(CMD, "--points is an option of 'resonance' (and 'all'), not of '%s'", ex);
     return CLI_EXIT_USAGE;
   }
   if (!no_plot && !cli_gnuplot_available()) {

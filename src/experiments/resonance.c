@@ -72,7 +72,7 @@ gm_status gm_experiment_resonance(size_t n_points, const char *dir, gm_resonance
   if (n_points < 1 || n_points > GM_RESONANCE_MAX_POINTS)
     return gm_error_set(err, GM_EINVAL,
                         "resonance: %zu points is outside [1, %d] (each point is two runs of "
-                        "10^4 steps, about 3 ms)",
+                        "10^4 steps, about 17 ms)",
                         n_points, GM_RESONANCE_MAX_POINTS);
   /* the uniform grid, refined within 0.005 of the integers 1..4, where the resonances of the
    * impulse method are narrower than the grid */

@@ -15,7 +15,7 @@ static const gm_experiment_info rows[] = {
      "variational IMEX method's energy error is flat",
      "r-RESPA spikes near integer omega h/pi, IMEX nearly constant; notes' check: IMEX "
      "1.253e-3 everywhere, r-RESPA blows up at omega h/pi = 0.999-0.9995",
-     "oscillatory resonance", "6 s", "docs/oscillatory.md#resonance-seed-000-fig-21",
+     "oscillatory resonance", "17 s", "docs/oscillatory.md#resonance-seed-000-fig-21",
      gm_experiment_run_resonance},
     {"fpu", "000 §2.4, Fig 2.2 (E2)",
      "FPU (l = 3, omega = 50): IMEX keeps the oscillatory energy I and the springs' energy "
