@@ -108,7 +108,20 @@ int cli_pde_run(int argc, char **argv) {
     cli_error("pde run", "which equation? sine-gordon, kdv or nls");
     return CLI_EXIT_USAGE;
   }
-  if (T == 0.0) T = e->T;
+  if (!options[3].seen) T = e->T; /* --T 0 is refused below, not taken as the default */
+  /* an option the equation does not use is an error, not ignored */
+  if (options[4].seen && strcmp(e->name, "sine-gordon") != 0) {
+    cli_error("pde run", "--omega is an option of sine-gordon (the breather), not of %s", e->name);
+    return CLI_EXIT_USAGE;
+  }
+  if (options[5].seen && strcmp(e->name, "kdv") != 0) {
+    cli_error("pde run", "--c is an option of kdv (the soliton's speed), not of %s", e->name);
+    return CLI_EXIT_USAGE;
+  }
+  if (options[8].seen && vtk == NULL) {
+    cli_error("pde run", "--frames sets the rows of --vtk; give --vtk FILE.vti");
+    return CLI_EXIT_USAGE;
+  }
   if (scheme_name == NULL) scheme_name = e->default_scheme;
   if (cli_check_positive("pde run", "--dt", dt) != CLI_EXIT_OK ||
       cli_check_positive("pde run", "--T", T) != CLI_EXIT_OK ||
