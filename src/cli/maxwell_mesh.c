@@ -2,6 +2,7 @@
  * random initial E (seed 000 E4/E5), the Bossavit–Kettunen leapfrog or the AVI; prints the run's
  * invariants, writes the energy series (CSV), a probe signal's harminv resonances and VTU
  * snapshots. */
+#include <cJSON.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -53,7 +54,8 @@ static const char usage[] =
     "                     stepping at its smallest step; --t-end (use 60), --fmax, --seed apply\n"
     "  --sample S         (--e5) the AVI's probe interval (default 0.005)\n"
     "  --t-compare T      (--e5) the final time of the cost comparison (default 1)\n"
-    "  --out DIR          (--e5) write e5-spectrum.png there\n\n"
+    "  --out DIR          (--e5) write e5-spectrum.png there\n"
+    "  --json             print one JSON object instead of the text (not with --e5)\n\n"
     "A run that blows up stops with exit status 1 and says when: the AVI when its energy\n"
     "passes 10 x its initial value (no source injects any), either scheme when the fields\n"
     "become non-finite. On a terminal a progress line is shown.\n\n"
@@ -248,7 +250,7 @@ static int build_materials(const cli_settings *m, const gm_complex *cx, double *
 }
 
 int cli_maxwell_mesh(int argc, char **argv) {
-  int avi = 0, whitney = 0, allow = 0, e5 = 0, exact = 0;
+  int avi = 0, whitney = 0, allow = 0, e5 = 0, exact = 0, json = 0;
   const char *out_dir = NULL;
   double fraction = 0.0 /* 0.1, E5 0.25 */, sample_dt = 0.005, t_compare = 1.0, courant = 0.9, dt = 0.0, t_end = 8.0, ly = 0.7, warp = 0.0, f_max = 2.0;
   size_t samples = 1000, seed = 1, rect = 0, snapshots = 4;
@@ -276,7 +278,8 @@ int cli_maxwell_mesh(int argc, char **argv) {
                           {"--sample", CLI_ARG_DOUBLE, &sample_dt, 0},
                           {"--t-compare", CLI_ARG_DOUBLE, &t_compare, 0},
                           {"--out", CLI_ARG_STRING, &out_dir, 0},
-                          {"--material", CLI_ARG_LIST, &materials, 0}};
+                          {"--material", CLI_ARG_LIST, &materials, 0},
+                          {"--json", CLI_ARG_FLAG, &json, 0}};
   const char *pos[1];
   size_t n_pos = 0;
   int status = cli_parse("maxwell mesh", argc, argv, options, sizeof options / sizeof options[0],
@@ -381,6 +384,11 @@ int cli_maxwell_mesh(int argc, char **argv) {
     }
     if (rect) {
       cli_error("maxwell mesh", "--e5 takes the Gmsh cavity file (examples/e5_cavity.msh)");
+      gm_mesh_free(mesh);
+      return CLI_EXIT_USAGE;
+    }
+    if (json) {
+      cli_error("maxwell mesh", "--json is not an option of --e5 (yet)");
       gm_mesh_free(mesh);
       return CLI_EXIT_USAGE;
     }
@@ -497,7 +505,9 @@ int cli_maxwell_mesh(int argc, char **argv) {
   double *g1 = malloc(gm_complex_count(cx, 0) * sizeof(double));
   if (!g0 || !g1) { free(g0); free(g1); status = CLI_EXIT_FAILURE; goto done; }
   gm_mesh_maxwell_gauss(s, g0);
+  const double wall0 = mx_now();
   st = mm_advance_progress(s, t_end);
+  const double wall_s = mx_now() - wall0;
   status = CLI_EXIT_OK;
   if (st != GM_OK || rc.failed) {
     if (!rc.failed && st == GM_EDOMAIN) /* non-finite between two observations */
@@ -519,6 +529,64 @@ int cli_maxwell_mesh(int argc, char **argv) {
   size_t active = 0;
   for (size_t k = 0; k < nf; ++k)
     if (isfinite(lim[k])) { smallest = fmin(smallest, fraction * lim[k]); ++active; }
+  gm_mesh_maxwell_energy en;
+  gm_mesh_maxwell_energy_get(s, &en);
+  /* the final state too: the library may have stopped a blow-up between two observations */
+  rc.max_dev = max_nan(rc.max_dev, fabs(en.plain - rc.guard.e0) / rc.guard.e0);
+  rc.guard.max_ratio = max_nan(rc.guard.max_ratio, fabs(en.plain) / fabs(rc.guard.e0));
+  const double uniform_updates = (double)active * floor(t_end / smallest);
+  /* the probe's resonances: a failed analysis is a failed run, never exit 0 */
+  gm_harminv_mode modes[64];
+  size_t nm = 0;
+  int harminv_ok = 0;
+  if (probe && status == CLI_EXIT_OK) {
+    size_t n;
+    const double *t, *v;
+    gm_mesh_maxwell_probe_samples(s, 0, &n, &t, &v);
+    const double sdt = n > 1 ? t[1] - t[0] : step;
+    const double top = fmin(f_max, 0.5 / sdt);
+    harminv_ok = n >= 8 && gm_harminv(n, v, NULL, sdt, 0.02 * top, top, 0, 64, modes, &nm,
+                                      &err) == GM_OK;
+    if (!harminv_ok) {
+      cli_error("maxwell mesh", "--probe %s: harminv failed: %s", probe,
+                n >= 8 ? err.message : "fewer than 8 samples");
+      status = CLI_EXIT_FAILURE;
+    }
+  }
+  if (json && status == CLI_EXIT_OK) {
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddNumberToObject(j, "dim", (double)gm_complex_dim(cx));
+    cJSON_AddNumberToObject(j, "vertices", (double)gm_complex_count(cx, 0));
+    cJSON_AddNumberToObject(j, "edges", (double)ne);
+    cJSON_AddNumberToObject(j, "faces", (double)nf);
+    cJSON_AddNumberToObject(j, "cells", (double)gm_complex_count(cx, gm_complex_dim(cx)));
+    cJSON_AddStringToObject(j, "scheme", avi ? "avi" : "leapfrog");
+    cJSON_AddStringToObject(j, "star", whitney ? "whitney" : "diagonal");
+    cJSON_AddItemToObject(j, "cfl_limit", cli_json_number(gm_mesh_maxwell_cfl_limit(s)));
+    cJSON_AddItemToObject(j, avi ? "smallest_face_step" : "dt",
+                          cli_json_number(gm_mesh_maxwell_dt(s)));
+    cJSON_AddItemToObject(j, "t_final", cli_json_number(gm_mesh_maxwell_time(s)));
+    cJSON_AddNumberToObject(j, "steps", (double)gm_mesh_maxwell_step(s));
+    cJSON_AddNumberToObject(j, "face_updates", (double)fu);
+    cJSON_AddNumberToObject(j, "edge_updates", (double)eu);
+    if (avi) cJSON_AddItemToObject(j, "uniform_face_updates", cli_json_number(uniform_updates));
+    cJSON_AddItemToObject(j, "energy_initial", cli_json_number(rc.guard.e0));
+    cJSON_AddItemToObject(j, "energy_plain_final", cli_json_number(en.plain));
+    cJSON_AddItemToObject(j, "energy_leapfrog_final", cli_json_number(en.leapfrog));
+    cJSON_AddItemToObject(j, "max_rel_plain_energy_deviation", cli_json_number(rc.max_dev));
+    cJSON_AddItemToObject(j, "rel_leapfrog_energy_error_final",
+                          cli_json_number(fabs(en.leapfrog - rc.guard.e0) / rc.guard.e0));
+    cJSON_AddItemToObject(j, "max_abs_div_b", cli_json_number(gm_mesh_maxwell_div_b(s)));
+    cJSON_AddItemToObject(j, "max_gauss_drift", cli_json_number(gd));
+    if (probe) {
+      cJSON *res = cJSON_AddArrayToObject(j, "resonances");
+      for (size_t i = 0; i < nm; ++i)
+        if (modes[i].error < 1e-3) cJSON_AddItemToArray(res, cli_json_number(modes[i].frequency));
+    }
+    cJSON_AddNumberToObject(j, "wall_s", wall_s);
+    status = cli_json_print(j);
+    goto done;
+  }
   printf("mesh: %zu-D, %zu vertices, %zu edges, %zu faces, %zu cells\n", gm_complex_dim(cx),
          gm_complex_count(cx, 0), ne, nf, gm_complex_count(cx, gm_complex_dim(cx)));
   if (materials.n) {
@@ -533,39 +601,19 @@ int cli_maxwell_mesh(int argc, char **argv) {
   printf("run: t = %.6g, face updates %zu, edge updates %zu", gm_mesh_maxwell_time(s), fu, eu);
   if (avi)
     printf(" (uniform stepping at the smallest step: %.0f face updates, ratio %.3f)",
-           (double)active * floor(t_end / smallest), (double)fu / ((double)active * floor(t_end / smallest)));
+           uniform_updates, (double)fu / uniform_updates);
   printf("\n");
-  gm_mesh_maxwell_energy en;
-  gm_mesh_maxwell_energy_get(s, &en);
-  /* the final state too: the library may have stopped a blow-up between two observations */
-  rc.max_dev = max_nan(rc.max_dev, fabs(en.plain - rc.guard.e0) / rc.guard.e0);
-  rc.guard.max_ratio = max_nan(rc.guard.max_ratio, fabs(en.plain) / fabs(rc.guard.e0));
   char stops[64] = "the leapfrog stops only when non-finite";
   if (avi) snprintf(stops, sizeof stops, "the AVI stops above %g", rc.guard.limit);
   printf("energy: start %.10g, end plain %.10g, leapfrog %.10g, max |plain - E0|/E0 %.3e, max "
          "plain/E0 %.4g (%s)\n", rc.guard.e0, en.plain, en.leapfrog, rc.max_dev,
          rc.guard.max_ratio, stops);
   printf("invariants: max |div B| %.3e, max Gauss drift %.3e\n", gm_mesh_maxwell_div_b(s), gd);
-  if (probe && status == CLI_EXIT_OK) {
-    size_t n;
-    const double *t, *v;
-    gm_mesh_maxwell_probe_samples(s, 0, &n, &t, &v);
-    gm_harminv_mode modes[64];
-    size_t nm = 0;
-    const double sdt = n > 1 ? t[1] - t[0] : step;
-    const double top = fmin(f_max, 0.5 / sdt);
-    if (n >= 8 && gm_harminv(n, v, NULL, sdt, 0.02 * top, top, 0, 64, modes, &nm, &err) == GM_OK) {
-      printf("resonances (harminv, error < 1e-3):");
-      for (size_t i = 0; i < nm; ++i)
-        if (modes[i].error < 1e-3) printf(" %.5f", modes[i].frequency);
-      printf("\n");
-    } else {
-      /* a failed analysis is a failed run, never exit 0 */
-      printf("resonances: harminv failed (%s)\n", n >= 8 ? err.message : "fewer than 8 samples");
-      cli_error("maxwell mesh", "--probe %s: harminv failed: %s", probe,
-                n >= 8 ? err.message : "fewer than 8 samples");
-      status = CLI_EXIT_FAILURE;
-    }
+  if (harminv_ok) {
+    printf("resonances (harminv, error < 1e-3):");
+    for (size_t i = 0; i < nm; ++i)
+      if (modes[i].error < 1e-3) printf(" %.5f", modes[i].frequency);
+    printf("\n");
   }
 done:
   if (ef) fclose(ef);

@@ -1,6 +1,7 @@
 /* geomint oscillatory EXPERIMENT: the experiments of seed 000 ch. 2 (Stern's thesis, Figs.
  * 2.1–2.3; notes E1–E3) and a work–precision comparison on FPU, with the rows of the
  * oscillatory family (issue 12): data, figures and a table. */
+#include <cJSON.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -35,7 +36,8 @@ static const char usage[] =
     "  --out DIR    output directory, created if missing (default oscillatory-output)\n"
     "  --points N   resonance: number of values of omega h / pi (default 900, at most 20000:\n"
     "               about 17 ms each)\n"
-    "  --no-plot    write the data only\n";
+    "  --no-plot    write the data only\n"
+    "  --json       (resonance) print one JSON object instead of the text\n";
 
 #define CMD "oscillatory"
 
@@ -88,7 +90,7 @@ static gm_integrator *start(const gm_model *model, const char *method, size_t su
 
 /* ---- E1: resonance (src/experiments/resonance.c) -------------------------------------------- */
 
-static int experiment_resonance(const char *dir, size_t n_points, int plot) {
+static int experiment_resonance(const char *dir, size_t n_points, int plot, int json) {
   gm_resonance_result r;
   gm_error err = {{0}};
   gm_status st = gm_experiment_resonance(n_points, dir, &r, &err);
@@ -98,6 +100,22 @@ static int experiment_resonance(const char *dir, size_t n_points, int plot) {
   }
   char csv[4096], script[4096];
   snprintf(csv, sizeof csv, "%s/resonance.csv", dir);
+  if (json) {
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "experiment", "resonance");
+    cJSON_AddNumberToObject(j, "points", (double)(r.n_points + r.n_near));
+    cJSON_AddItemToObject(j, "imex_min", cli_json_number(r.imex_min));
+    cJSON_AddItemToObject(j, "imex_max", cli_json_number(r.imex_max));
+    cJSON_AddItemToObject(j, "impulse_max", cli_json_number(r.impulse_max));
+    cJSON_AddNumberToObject(j, "impulse_max_at", r.impulse_max_at);
+    cJSON_AddNumberToObject(j, "impulse_spikes", (double)r.impulse_spikes);
+    cJSON_AddNumberToObject(j, "impulse_blowups", (double)r.impulse_blowups);
+    cJSON_AddItemToObject(j, "spikes_near", cli_json_numbers(r.spike_near, r.n_spike_near));
+    cJSON_AddNumberToObject(j, "wall_s", r.wall_s);
+    cJSON_AddStringToObject(j, "csv", csv);
+    const int rc = cli_json_print(j);
+    if (rc != CLI_EXIT_OK) return rc;
+  } else {
   printf("resonance (seed 000 Fig 2.1): toy problem, h = 0.1, T = 1000, %zu values of "
          "omega h/pi in (0, 4.5] (+ %zu within 0.005 of 1, 2, 3, 4)\n",
          r.n_points, r.n_near);
@@ -108,6 +126,7 @@ static int experiment_resonance(const char *dir, size_t n_points, int plot) {
          r.impulse_max, r.impulse_max_at, r.impulse_spikes, r.impulse_blowups);
   for (size_t i = 0; i < r.n_spike_near; ++i) printf(" %g", r.spike_near[i]);
   printf("\n  data: %s\n", csv);
+  }
   if (!plot) return CLI_EXIT_OK;
   snprintf(script, sizeof script, "%s/resonance.gp", dir);
   FILE *g = open_file(script);
@@ -670,10 +689,11 @@ static int experiment_multiscale(void) {
 static int oscillatory_main(int argc, char **argv) {
   const char *dir = "oscillatory-output";
   size_t points = 900;
-  int no_plot = 0;
+  int no_plot = 0, json = 0;
   cli_option options[] = {{"--out", CLI_ARG_STRING, &dir, 0},
                           {"--points", CLI_ARG_COUNT, &points, 0},
-                          {"--no-plot", CLI_ARG_FLAG, &no_plot, 0}};
+                          {"--no-plot", CLI_ARG_FLAG, &no_plot, 0},
+                          {"--json", CLI_ARG_FLAG, &json, 0}};
   const char *positional[1];
   size_t n_positional = 0;
   int rc = cli_parse(CMD, argc, argv, options, sizeof options / sizeof options[0], positional,
@@ -706,6 +726,11 @@ static int oscillatory_main(int argc, char **argv) {
               points, GM_RESONANCE_MAX_POINTS, GM_RESONANCE_MAX_POINTS);
     return CLI_EXIT_USAGE;
   }
+  if (json && strcmp(ex, "resonance") != 0) {
+    cli_error(CMD, "--json: so far only 'resonance' prints JSON (its computation is in the "
+              "library); '%s' prints a table", ex);
+    return CLI_EXIT_USAGE;
+  }
   if (options[1].seen && !all && strcmp(ex, "resonance") != 0) {
     cli_error(CMD, "--points is an option of 'resonance' (and 'all'), not of '%s'", ex);
     return CLI_EXIT_USAGE;
@@ -715,7 +740,7 @@ static int oscillatory_main(int argc, char **argv) {
     return CLI_EXIT_USAGE;
   }
   if ((rc = make_directory(dir)) != CLI_EXIT_OK) return rc;
-  if (all || strcmp(ex, "resonance") == 0) rc = experiment_resonance(dir, points, !no_plot);
+  if (all || strcmp(ex, "resonance") == 0) rc = experiment_resonance(dir, points, !no_plot, json);
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "fpu") == 0)) rc = experiment_fpu(dir, !no_plot, 0);
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "fpu-long") == 0))
     rc = experiment_fpu(dir, !no_plot, 1);
