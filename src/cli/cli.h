@@ -28,6 +28,9 @@ extern const cli_command cli_maxwell_command; /* maxwell.c */
 extern const cli_command cli_routh_command;   /* reduction.c, alias of reduction */
 extern const cli_command cli_reduction_command; /* reduction.c */
 extern const cli_command cli_pde_command;
+extern const cli_command cli_experiments_command; /* experiments.c */
+/* The command named name (main.c), NULL if none. */
+const cli_command *cli_find_command(const char *name);
 
 /* "geomint COMMAND: message" on stderr, one line. */
 #if defined(__GNUC__)

@@ -14,7 +14,8 @@ static const cli_command *const commands[] = {&cli_list_command, &cli_run_comman
                                               &cli_maxwell_command,
                                               &cli_reduction_command,
                                               &cli_routh_command,
-                                              &cli_pde_command};
+                                              &cli_pde_command,
+                                              &cli_experiments_command};
 #define N_COMMANDS (sizeof commands / sizeof commands[0])
 
 void cli_error(const char *command, const char *fmt, ...) {
@@ -51,7 +52,7 @@ static const char *command_name_at(const void *ctx, size_t i) {
   return i == N_COMMANDS ? "help" : NULL;
 }
 
-static const cli_command *find_command(const char *name) {
+const cli_command *cli_find_command(const char *name) {
   for (size_t i = 0; i < N_COMMANDS; ++i)
     if (strcmp(commands[i]->name, name) == 0) return commands[i];
   return NULL;
@@ -62,7 +63,7 @@ static int help(int argc, char **argv) {
     print_usage(stdout);
     return CLI_EXIT_OK;
   }
-  const cli_command *c = find_command(argv[0]);
+  const cli_command *c = cli_find_command(argv[0]);
   if (c == NULL) {
     cli_unknown(NULL, "command", argv[0], command_name_at, NULL, "see 'geomint --help'");
     return CLI_EXIT_USAGE;
@@ -85,7 +86,7 @@ int main(int argc, char **argv) {
     printf("geomint %s\n", GM_VERSION_STRING);
     return CLI_EXIT_OK;
   }
-  const cli_command *c = find_command(name);
+  const cli_command *c = cli_find_command(name);
   if (c == NULL) {
     cli_unknown(NULL, "command", name, command_name_at, NULL, "see 'geomint --help'");
     return CLI_EXIT_USAGE;

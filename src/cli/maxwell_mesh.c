@@ -2,6 +2,7 @@
  * random initial E (seed 000 E4/E5), the Bossavit–Kettunen leapfrog or the AVI; prints the run's
  * invariants, writes the energy series (CSV), a probe signal's harminv resonances and VTU
  * snapshots. */
+#include <cJSON.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -18,11 +19,13 @@ static const char usage[] =
     "PEC cavity on a mesh of triangles (2-D TE: E on edges, Bz on triangles) or tetrahedra,\n"
     "random initial E, run with the Bossavit-Kettunen leapfrog (default) or the asynchronous\n"
     "variational integrator (--avi: every face its own step, a fraction of its local limit).\n"
-    "--rect NX generates [0,1]x[0,LY] with near-equilateral triangles, NX columns; --warp W\n"
+    "--rect NX generates [0,1]x[0,LY] with near-equilateral triangles, NX columns (at most 1000);\n"
+    "--warp W "
     "draws the x and y partitions at random (spacings in [1-W, 1+W]).\n\n"
     "options:\n"
     "  --avi              the AVI (diagonal star only)\n"
-    "  --fraction F       AVI: step of each face = F x its local CFL limit (default 0.1)\n"
+    "  --fraction F       AVI: step of each face = F x its local CFL limit, in [1e-4, 1]\n"
+    "                     (default 0.1)\n"
     "  --courant C        leapfrog: dt = C x the CFL limit (default 0.9)\n"
     "  --dt DT            leapfrog: this step (refused above the CFL limit)\n"
     "  --whitney          Whitney (consistent) star, CHOLMOD; for meshes that are not\n"
@@ -30,9 +33,10 @@ static const char usage[] =
     "  --allow-negative-stars  run the diagonal star on a mesh that is not well-centred\n"
     "  --material X0,Y0[,Z0],X1,Y1[,Z1],EPS,MU\n"
     "                     epsilon and mu in a box (the cells whose centroid lies in it;\n"
-    "                     repeatable, a later box wins; vacuum elsewhere)\n"
-    "  --t-end T          final time (default 8)\n"
-    "  --samples N        energy/probe samples over the run (default 1000)\n"
+    "                     repeatable, a later box wins; vacuum elsewhere; EPS, MU in [1e-6, 1e6])\n"
+    "  --t-end T          final time (default 8; at most 1e9 steps of dt, or of the AVI's\n"
+    "                     smallest face step)\n"
+    "  --samples N        energy/probe samples over the run (default 1000, at most 1e7)\n"
     "  --seed S           random initial E (default 1)\n"
     "  --energy FILE.csv  t, electric, magnetic, plain, leapfrog energy per sample\n"
     "  --probe X,Y[,Z]    record E_x there and print its harminv resonances in (0, --fmax]\n"
@@ -50,11 +54,26 @@ static const char usage[] =
     "                     stepping at its smallest step; --t-end (use 60), --fmax, --seed apply\n"
     "  --sample S         (--e5) the AVI's probe interval (default 0.005)\n"
     "  --t-compare T      (--e5) the final time of the cost comparison (default 1)\n"
-    "  --out DIR          (--e5) write e5-spectrum.png there\n\n"
+    "  --out DIR          (--e5) write e5-spectrum.png there\n"
+    "  --json             print one JSON object instead of the text (not with --e5)\n\n"
     "A run that blows up stops with exit status 1 and says when: the AVI when its energy\n"
     "passes 10 x its initial value (no source injects any), either scheme when the fields\n"
     "become non-finite. On a terminal a progress line is shown.\n\n"
     "Exit status: 0 success, 1 the run failed or blew up, 2 bad arguments or mesh.\n";
+
+/* Documented bounds (usage text): they keep a run's memory and time within reach. */
+#define MM_MIN_FRACTION 1e-4
+#define MM_MAX_RECT 1000
+#define MM_BYTES_PER_TRIANGLE 700 /* peak RSS of --rect 500 --t-end 0.01: 277 MB, 404 000 triangles */
+#define MM_MAX_SAMPLES 10000000
+#define MM_MAX_STEPS 1e9
+#define MM_MIN_MATERIAL 1e-6
+#define MM_MAX_MATERIAL 1e6
+
+static double mm_rect_triangles(size_t rect, double ly) {
+  const double ny = fmax(1.0, round(ly * 2.0 * (double)rect / sqrt(3.0)));
+  return 2.0 * (double)rect * ny;
+}
 
 static double rnd(uint64_t *z) {
   uint64_t x = (*z += 0x9e3779b97f4a7c15ull);
@@ -231,7 +250,7 @@ static int build_materials(const cli_settings *m, const gm_complex *cx, double *
 }
 
 int cli_maxwell_mesh(int argc, char **argv) {
-  int avi = 0, whitney = 0, allow = 0, e5 = 0, exact = 0;
+  int avi = 0, whitney = 0, allow = 0, e5 = 0, exact = 0, json = 0;
   const char *out_dir = NULL;
   double fraction = 0.0 /* 0.1, E5 0.25 */, sample_dt = 0.005, t_compare = 1.0, courant = 0.9, dt = 0.0, t_end = 8.0, ly = 0.7, warp = 0.0, f_max = 2.0;
   size_t samples = 1000, seed = 1, rect = 0, snapshots = 4;
@@ -259,7 +278,8 @@ int cli_maxwell_mesh(int argc, char **argv) {
                           {"--sample", CLI_ARG_DOUBLE, &sample_dt, 0},
                           {"--t-compare", CLI_ARG_DOUBLE, &t_compare, 0},
                           {"--out", CLI_ARG_STRING, &out_dir, 0},
-                          {"--material", CLI_ARG_LIST, &materials, 0}};
+                          {"--material", CLI_ARG_LIST, &materials, 0},
+                          {"--json", CLI_ARG_FLAG, &json, 0}};
   const char *pos[1];
   size_t n_pos = 0;
   int status = cli_parse("maxwell mesh", argc, argv, options, sizeof options / sizeof options[0],
@@ -271,6 +291,47 @@ int cli_maxwell_mesh(int argc, char **argv) {
     return CLI_EXIT_USAGE;
   }
   if (cli_check_positive("maxwell mesh", "--t-end", t_end) != CLI_EXIT_OK) return CLI_EXIT_USAGE;
+  /* a value given is checked as given (--fraction 0 is not the default) */
+  if (options[3].seen && !(fraction >= MM_MIN_FRACTION && fraction <= 1.0)) {
+    cli_error("maxwell mesh", "--fraction %g: must be in [%g, 1] (the AVI's work grows as 1/F)",
+              fraction, MM_MIN_FRACTION);
+    return CLI_EXIT_USAGE;
+  }
+  if (options[5].seen && cli_check_positive("maxwell mesh", "--dt", dt) != CLI_EXIT_OK)
+    return CLI_EXIT_USAGE;
+  if (rect > MM_MAX_RECT) {
+    cli_error("maxwell mesh", "--rect %zu: at most %d (%.3g triangles, about %.3g bytes at "
+              "%d bytes each)", rect, MM_MAX_RECT,
+              mm_rect_triangles(rect, ly), MM_BYTES_PER_TRIANGLE * mm_rect_triangles(rect, ly),
+              MM_BYTES_PER_TRIANGLE);
+    return CLI_EXIT_USAGE;
+  }
+  if (samples > MM_MAX_SAMPLES) {
+    cli_error("maxwell mesh", "--samples %zu: at most %g", samples, (double)MM_MAX_SAMPLES);
+    return CLI_EXIT_USAGE;
+  }
+  /* options of another mode are errors, not ignored */
+  {
+    static const struct { size_t option; int avi, leapfrog, e5; } scope[] = {
+        {3, 1, 0, 1}, {4, 0, 1, 0}, {5, 0, 1, 0}, {18, 1, 0, 0}, {19, 0, 0, 1}, {20, 0, 0, 1},
+        {21, 0, 0, 1}, {15, 0, 0, 0}, {16, 0, 0, 0}};
+    for (size_t i = 0; i < sizeof scope / sizeof scope[0]; ++i) {
+      const cli_option *o = &options[scope[i].option];
+      const int is_rect_option = scope[i].option == 15 || scope[i].option == 16;
+      const int used = is_rect_option ? rect > 0
+                       : e5           ? scope[i].e5
+                       : avi          ? scope[i].avi
+                                      : scope[i].leapfrog;
+      if (o->seen && !used) {
+        cli_error("maxwell mesh", "%s is not an option of %s", o->name,
+                  is_rect_option ? "a mesh file (it shapes --rect)"
+                  : e5           ? "--e5"
+                  : avi          ? "--avi"
+                                 : "the leapfrog (the default scheme)");
+        return CLI_EXIT_USAGE;
+      }
+    }
+  }
   if (fraction == 0.0) fraction = e5 ? 0.25 : 0.1;
   if (!(fraction > 0.0 && fraction <= 1.0) ||
       !(courant > 0.0 && courant <= 1.0) || !(warp >= 0.0 && warp < 1.0) || !(ly > 0.0) ||
@@ -326,6 +387,11 @@ int cli_maxwell_mesh(int argc, char **argv) {
       gm_mesh_free(mesh);
       return CLI_EXIT_USAGE;
     }
+    if (json) {
+      cli_error("maxwell mesh", "--json is not an option of --e5 (yet)");
+      gm_mesh_free(mesh);
+      return CLI_EXIT_USAGE;
+    }
     status = cli_maxwell_mesh_e5(mesh, out_dir, t_end, seed, f_max, fraction, sample_dt,
                                  t_compare);
     gm_mesh_free(mesh);
@@ -360,6 +426,15 @@ int cli_maxwell_mesh(int argc, char **argv) {
     if ((status = build_materials(&materials, cx, eps, mu, owner, hits)) != CLI_EXIT_OK) goto done;
     status = CLI_EXIT_USAGE;
   }
+  for (size_t T = 0; materials.n && T < nt; ++T)
+    /* positive values past the bounds (the library refuses the others, naming the cell) */
+    if ((eps[T] > 0.0 && (eps[T] < MM_MIN_MATERIAL || eps[T] > MM_MAX_MATERIAL)) ||
+        (mu[T] > 0.0 && (mu[T] < MM_MIN_MATERIAL || mu[T] > MM_MAX_MATERIAL))) {
+      cli_error("maxwell mesh", "--material %s: epsilon and mu must lie in [%g, %g] (the step "
+                "falls with sqrt(epsilon mu))", materials.items[owner[T]], MM_MIN_MATERIAL,
+                MM_MAX_MATERIAL);
+      goto done;
+    }
   if ((st = gm_mesh_maxwell_create(g, eps, mu, &o, &s, &err)) != GM_OK) {
     size_t bad = SIZE_MAX; /* the region that set a refused ε or μ */
     for (size_t T = 0; materials.n && T < nt && bad == SIZE_MAX; ++T)
@@ -382,6 +457,14 @@ int cli_maxwell_mesh(int argc, char **argv) {
   for (size_t e = 0; e < ne; ++e) E[e] = rnd(&z);
   gm_mesh_maxwell_set_fields(s, E, NULL);
   const double step = gm_mesh_maxwell_dt(s);
+  /* the step count, for the leapfrog the steps, for the AVI the ticks of its smallest step */
+  if (!(t_end / step <= MM_MAX_STEPS)) {
+    cli_error("maxwell mesh", "--t-end %g is %.3g steps of %s %.3g: at most %.0e%s", t_end,
+              t_end / step, avi ? "the smallest face step" : "dt", step, MM_MAX_STEPS,
+              materials.n ? " (--material: the step falls with sqrt(epsilon mu))"
+              : options[5].seen ? " (--dt)" : "");
+    goto done;
+  }
   const double sample = t_end / (double)samples;
   size_t every = (size_t)floor(sample / step);
   if (every == 0) every = 1;
@@ -389,8 +472,12 @@ int cli_maxwell_mesh(int argc, char **argv) {
   const size_t n_rec = avi ? samples + 2 : (size_t)(t_end / step) + 2;
   if (probe) {
     double x[3] = {0, 0, 0};
-    if (sscanf(probe, "%lf,%lf,%lf", &x[0], &x[1], &x[2]) < 2 ||
-        gm_mesh_maxwell_add_probe(s, GM_EX, x, n_rec, NULL) != GM_OK) {
+    const int n_read = sscanf(probe, "%lf,%lf,%lf", &x[0], &x[1], &x[2]);
+    if (n_read >= 2 && !(isfinite(x[0]) && isfinite(x[1]) && isfinite(x[2]))) {
+      cli_error("maxwell mesh", "--probe %s: the coordinates must be finite", probe);
+      goto done;
+    }
+    if (n_read < 2 || gm_mesh_maxwell_add_probe(s, GM_EX, x, n_rec, NULL) != GM_OK) {
       cli_error("maxwell mesh", "--probe %s: %s", probe,
                 gm_mesh_maxwell_errmsg(s)[0] ? gm_mesh_maxwell_errmsg(s) : "expected X,Y[,Z]");
       goto done;
@@ -418,7 +505,9 @@ int cli_maxwell_mesh(int argc, char **argv) {
   double *g1 = malloc(gm_complex_count(cx, 0) * sizeof(double));
   if (!g0 || !g1) { free(g0); free(g1); status = CLI_EXIT_FAILURE; goto done; }
   gm_mesh_maxwell_gauss(s, g0);
+  const double wall0 = mx_now();
   st = mm_advance_progress(s, t_end);
+  const double wall_s = mx_now() - wall0;
   status = CLI_EXIT_OK;
   if (st != GM_OK || rc.failed) {
     if (!rc.failed && st == GM_EDOMAIN) /* non-finite between two observations */
@@ -440,6 +529,64 @@ int cli_maxwell_mesh(int argc, char **argv) {
   size_t active = 0;
   for (size_t k = 0; k < nf; ++k)
     if (isfinite(lim[k])) { smallest = fmin(smallest, fraction * lim[k]); ++active; }
+  gm_mesh_maxwell_energy en;
+  gm_mesh_maxwell_energy_get(s, &en);
+  /* the final state too: the library may have stopped a blow-up between two observations */
+  rc.max_dev = max_nan(rc.max_dev, fabs(en.plain - rc.guard.e0) / rc.guard.e0);
+  rc.guard.max_ratio = max_nan(rc.guard.max_ratio, fabs(en.plain) / fabs(rc.guard.e0));
+  const double uniform_updates = (double)active * floor(t_end / smallest);
+  /* the probe's resonances: a failed analysis is a failed run, never exit 0 */
+  gm_harminv_mode modes[64];
+  size_t nm = 0;
+  int harminv_ok = 0;
+  if (probe && status == CLI_EXIT_OK) {
+    size_t n;
+    const double *t, *v;
+    gm_mesh_maxwell_probe_samples(s, 0, &n, &t, &v);
+    const double sdt = n > 1 ? t[1] - t[0] : step;
+    const double top = fmin(f_max, 0.5 / sdt);
+    harminv_ok = n >= 8 && gm_harminv(n, v, NULL, sdt, 0.02 * top, top, 0, 64, modes, &nm,
+                                      &err) == GM_OK;
+    if (!harminv_ok) {
+      cli_error("maxwell mesh", "--probe %s: harminv failed: %s", probe,
+                n >= 8 ? err.message : "fewer than 8 samples");
+      status = CLI_EXIT_FAILURE;
+    }
+  }
+  if (json && status == CLI_EXIT_OK) {
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddNumberToObject(j, "dim", (double)gm_complex_dim(cx));
+    cJSON_AddNumberToObject(j, "vertices", (double)gm_complex_count(cx, 0));
+    cJSON_AddNumberToObject(j, "edges", (double)ne);
+    cJSON_AddNumberToObject(j, "faces", (double)nf);
+    cJSON_AddNumberToObject(j, "cells", (double)gm_complex_count(cx, gm_complex_dim(cx)));
+    cJSON_AddStringToObject(j, "scheme", avi ? "avi" : "leapfrog");
+    cJSON_AddStringToObject(j, "star", whitney ? "whitney" : "diagonal");
+    cJSON_AddItemToObject(j, "cfl_limit", cli_json_number(gm_mesh_maxwell_cfl_limit(s)));
+    cJSON_AddItemToObject(j, avi ? "smallest_face_step" : "dt",
+                          cli_json_number(gm_mesh_maxwell_dt(s)));
+    cJSON_AddItemToObject(j, "t_final", cli_json_number(gm_mesh_maxwell_time(s)));
+    cJSON_AddNumberToObject(j, "steps", (double)gm_mesh_maxwell_step(s));
+    cJSON_AddNumberToObject(j, "face_updates", (double)fu);
+    cJSON_AddNumberToObject(j, "edge_updates", (double)eu);
+    if (avi) cJSON_AddItemToObject(j, "uniform_face_updates", cli_json_number(uniform_updates));
+    cJSON_AddItemToObject(j, "energy_initial", cli_json_number(rc.guard.e0));
+    cJSON_AddItemToObject(j, "energy_plain_final", cli_json_number(en.plain));
+    cJSON_AddItemToObject(j, "energy_leapfrog_final", cli_json_number(en.leapfrog));
+    cJSON_AddItemToObject(j, "max_rel_plain_energy_deviation", cli_json_number(rc.max_dev));
+    cJSON_AddItemToObject(j, "rel_leapfrog_energy_error_final",
+                          cli_json_number(fabs(en.leapfrog - rc.guard.e0) / rc.guard.e0));
+    cJSON_AddItemToObject(j, "max_abs_div_b", cli_json_number(gm_mesh_maxwell_div_b(s)));
+    cJSON_AddItemToObject(j, "max_gauss_drift", cli_json_number(gd));
+    if (probe) {
+      cJSON *res = cJSON_AddArrayToObject(j, "resonances");
+      for (size_t i = 0; i < nm; ++i)
+        if (modes[i].error < 1e-3) cJSON_AddItemToArray(res, cli_json_number(modes[i].frequency));
+    }
+    cJSON_AddNumberToObject(j, "wall_s", wall_s);
+    status = cli_json_print(j);
+    goto done;
+  }
   printf("mesh: %zu-D, %zu vertices, %zu edges, %zu faces, %zu cells\n", gm_complex_dim(cx),
          gm_complex_count(cx, 0), ne, nf, gm_complex_count(cx, gm_complex_dim(cx)));
   if (materials.n) {
@@ -454,35 +601,19 @@ int cli_maxwell_mesh(int argc, char **argv) {
   printf("run: t = %.6g, face updates %zu, edge updates %zu", gm_mesh_maxwell_time(s), fu, eu);
   if (avi)
     printf(" (uniform stepping at the smallest step: %.0f face updates, ratio %.3f)",
-           (double)active * floor(t_end / smallest), (double)fu / ((double)active * floor(t_end / smallest)));
+           uniform_updates, (double)fu / uniform_updates);
   printf("\n");
-  gm_mesh_maxwell_energy en;
-  gm_mesh_maxwell_energy_get(s, &en);
-  /* the final state too: the library may have stopped a blow-up between two observations */
-  rc.max_dev = max_nan(rc.max_dev, fabs(en.plain - rc.guard.e0) / rc.guard.e0);
-  rc.guard.max_ratio = max_nan(rc.guard.max_ratio, fabs(en.plain) / fabs(rc.guard.e0));
   char stops[64] = "the leapfrog stops only when non-finite";
   if (avi) snprintf(stops, sizeof stops, "the AVI stops above %g", rc.guard.limit);
   printf("energy: start %.10g, end plain %.10g, leapfrog %.10g, max |plain - E0|/E0 %.3e, max "
          "plain/E0 %.4g (%s)\n", rc.guard.e0, en.plain, en.leapfrog, rc.max_dev,
          rc.guard.max_ratio, stops);
   printf("invariants: max |div B| %.3e, max Gauss drift %.3e\n", gm_mesh_maxwell_div_b(s), gd);
-  if (probe && status == CLI_EXIT_OK) {
-    size_t n;
-    const double *t, *v;
-    gm_mesh_maxwell_probe_samples(s, 0, &n, &t, &v);
-    gm_harminv_mode modes[64];
-    size_t nm = 0;
-    const double sdt = n > 1 ? t[1] - t[0] : step;
-    const double top = fmin(f_max, 0.5 / sdt);
-    if (n >= 8 && gm_harminv(n, v, NULL, sdt, 0.02 * top, top, 0, 64, modes, &nm, &err) == GM_OK) {
-      printf("resonances (harminv, error < 1e-3):");
-      for (size_t i = 0; i < nm; ++i)
-        if (modes[i].error < 1e-3) printf(" %.5f", modes[i].frequency);
-      printf("\n");
-    } else {
-      printf("resonances: harminv failed (%s)\n", err.message);
-    }
+  if (harminv_ok) {
+    printf("resonances (harminv, error < 1e-3):");
+    for (size_t i = 0; i < nm; ++i)
+      if (modes[i].error < 1e-3) printf(" %.5f", modes[i].frequency);
+    printf("\n");
   }
 done:
   if (ef) fclose(ef);

@@ -26,6 +26,9 @@
 #define MC_MAX_MODES 128
 #define MC_MAX_UNIQ 16
 
+/* the longest record --t-end accepts */
+#define MC_MAX_T_END 1e4
+
 static const char usage[] =
     "usage: geomint maxwell mesh-cavity [--shape box|cylinder|sphere] [--levels K] [--n0 N]\n"
     "                                   [--modes N] [--diagonal] [--t-end T] [--seed S]\n"
@@ -46,8 +49,8 @@ static const char usage[] =
     "                    multiplicity, the last multiplet whole (default 10)\n"
     "  --diagonal        the circumcentric diagonal star (accepted where it is not positive)\n"
     "                    instead of the Whitney star\n"
-    "  --n0 N            (box) cubes along x at level 1 (default 5)\n"
-    "  --t-end T         record length (default 150)\n"
+    "  --n0 N            (box) cubes along x at level 1, 3..40 (default 5)\n"
+    "  --t-end T         record length, at most 1e4 (default 150)\n"
     "  --seed S          sources and probes (default 11)\n"
     "  --plot FILE.png   |relative error| against h, log-log, one line per resonance (gnuplot;\n"
     "                    the nearest peak, or the farthest where a multiplet has > 2 members)\n\n"
@@ -150,9 +153,27 @@ int cli_maxwell_mesh_cavity(int argc, char **argv) {
   if (status != CLI_EXIT_OK) return status;
   if ((strcmp(shape, "box") != 0 && strcmp(shape, "cylinder") != 0 &&
        strcmp(shape, "sphere") != 0) || levels < 1 ||
-      levels > MC_MAX_LEVELS || n0 < 2 || n_first < 1 || !(t_end > 0.0) || !isfinite(t_end)) {
-    cli_error(MC, "bad option value (--shape box|cylinder|sphere, --levels 1..%d, --n0 >= 2, "
+      levels > MC_MAX_LEVELS || n_first < 1 || !(t_end > 0.0) || !isfinite(t_end)) {
+    cli_error(MC, "bad option value (--shape box|cylinder|sphere, --levels 1..%d, --modes >= 1, "
                   "--t-end > 0)", MC_MAX_LEVELS);
+    return CLI_EXIT_USAGE;
+  }
+  /* the box needs two cubes along its shortest side (0.6 n0, rounded); n0 = 40 at 6 levels is
+   * 240 x 192 x 144 cubes, about 4e7 tetrahedra */
+  if (options[2].seen && strcmp(shape, "box") != 0) {
+    cli_error(MC, "--n0 is an option of --shape box (the %s's meshes are files)", shape);
+    return CLI_EXIT_USAGE;
+  }
+  if (n0 < 3 || n0 > 40) {
+    cli_error(MC, "--n0 %zu: must be in [3, 40] (the box's 0.6 side needs 2 cubes at n0 = 3)", n0);
+    return CLI_EXIT_USAGE;
+  }
+  /* the probe signals live in memory: 24 doubles a step, about 1e6 steps at t = 1e4 on the
+   * finest default level */
+  if (t_end > MC_MAX_T_END) {
+    cli_error(MC, "--t-end %g: at most %g (24 probe signals are kept in memory, 8 bytes each a "
+              "step: %g is about %.2g bytes at the finest level)", t_end, MC_MAX_T_END, t_end,
+              24.0 * 8.0 * t_end / (0.3 / (double)(n0 * levels)));
     return CLI_EXIT_USAGE;
   }
   if (plot && cli_plot_check_output(MC, plot) != CLI_EXIT_OK) return CLI_EXIT_USAGE;

@@ -1,6 +1,7 @@
 /* geomint oscillatory EXPERIMENT: the experiments of seed 000 ch. 2 (Stern's thesis, Figs.
  * 2.1–2.3; notes E1–E3) and a work–precision comparison on FPU, with the rows of the
  * oscillatory family (issue 12): data, figures and a table. */
+#include <cJSON.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -9,6 +10,7 @@
 #include <sys/stat.h>
 
 #include "cli/cli.h"
+#include "geomint/experiments.h"
 
 static const char usage[] =
     "usage: geomint oscillatory EXPERIMENT [--out DIR] [--points N] [--no-plot]\n\n"
@@ -32,8 +34,10 @@ static const char usage[] =
     "Writes CSV files and gnuplot scripts into DIR and draws PNG figures; prints a table.\n\n"
     "options:\n"
     "  --out DIR    output directory, created if missing (default oscillatory-output)\n"
-    "  --points N   resonance: number of values of omega h / pi (default 900)\n"
-    "  --no-plot    write the data only\n";
+    "  --points N   resonance: number of values of omega h / pi (default 900, at most 20000:\n"
+    "               about 17 ms each)\n"
+    "  --no-plot    write the data only\n"
+    "  --json       (resonance) print one JSON object instead of the text\n";
 
 #define CMD "oscillatory"
 
@@ -84,110 +88,45 @@ static gm_integrator *start(const gm_model *model, const char *method, size_t su
   return it;
 }
 
-/* ---- E1: resonance ----------------------------------------------------------------------- */
+/* ---- E1: resonance (src/experiments/resonance.c) -------------------------------------------- */
 
-typedef struct {
-  const gm_problem *pb;
-  double h0, max_error;
-} energy_watch;
-
-static int watch_energy(void *ctx, size_t step, double t, const double *y) {
-  (void)step;
-  (void)t;
-  energy_watch *w = ctx;
-  double e = fabs(gm_problem_energy(w->pb, y) - w->h0);
-  if (!(e <= w->max_error)) w->max_error = e; /* NaN wins */
-  return 0;
-}
-
-/* max |H − H0| over T = 1000, h = 0.1; a run that fails (overflow) counts as +inf */
-static double resonance_error(const char *method, double omega, size_t substeps) {
-  gm_model *model = NULL;
-  if (gm_model_create("toy-resonance", &model) != GM_OK) return NAN;
-  gm_model_set(model, "omega", omega);
-  if (gm_model_build(model) != GM_OK) {
-    gm_model_free(model);
-    return NAN;
+static int experiment_resonance(const char *dir, size_t n_points, int plot, int json) {
+  gm_resonance_result r;
+  gm_error err = {{0}};
+  gm_status st = gm_experiment_resonance(n_points, dir, &r, &err);
+  if (st != GM_OK) {
+    cli_error(CMD, "%s", err.message);
+    return st == GM_EINVAL ? CLI_EXIT_USAGE : CLI_EXIT_FAILURE;
   }
-  gm_integrator *it = start(model, method, substeps);
-  if (it == NULL) {
-    gm_model_free(model);
-    return NAN;
-  }
-  energy_watch w = {gm_model_problem(model), 0.5, 0.0};
-  gm_integrator_add_observer(it, watch_energy, &w, 1);
-  gm_status st = gm_integrator_run(it, 10000, 0.1);
-  gm_integrator_free(it);
-  gm_model_free(model);
-  return st == GM_OK && isfinite(w.max_error) ? w.max_error : INFINITY;
-}
-
-static int compare_doubles(const void *a, const void *b) {
-  const double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-static int experiment_resonance(const char *dir, size_t n_points, int plot) {
   char csv[4096], script[4096];
   snprintf(csv, sizeof csv, "%s/resonance.csv", dir);
-  FILE *f = open_file(csv);
-  if (f == NULL) return CLI_EXIT_FAILURE;
-  fprintf(f, "omega_h_over_pi,omega,imex,impulse_100\n");
-  double imex_min = INFINITY, imex_max = 0.0, respa_max = 0.0, respa_at = 0.0;
-  size_t respa_spikes = 0, respa_blowups = 0;
-  double spike_near[16];
-  size_t n_near = 0;
-  /* the uniform grid, refined within 0.005 of the integers 1..4, where the resonances of the
-   * impulse method are narrower than the grid */
-  static const double near[] = {-5e-3, -2e-3, -1e-3, -5e-4, -2e-4, -1e-4,
-                                1e-4,  2e-4,  5e-4,  1e-3,  2e-3,  5e-3};
-  const size_t n_near_grid = sizeof near / sizeof near[0], n_total = n_points + 4 * n_near_grid;
-  double *xs = malloc(n_total * sizeof *xs);
-  if (xs == NULL) {
-    fclose(f);
-    return CLI_EXIT_FAILURE;
-  }
-  for (size_t k = 0; k < n_points; ++k) xs[k] = 4.5 * (double)(k + 1) / (double)n_points;
-  for (size_t i = 0; i < 4; ++i)
-    for (size_t j = 0; j < n_near_grid; ++j) xs[n_points + i * n_near_grid + j] = (double)(i + 1) + near[j];
-  qsort(xs, n_total, sizeof *xs, compare_doubles);
-  for (size_t k = 0; k < n_total; ++k) {
-    const double x = xs[k], omega = x * 3.14159265358979323846 / 0.1;
-    if (k > 0 && x == xs[k - 1]) continue;
-    double ei = resonance_error("imex", omega, 0), er = resonance_error("impulse", omega, 100);
-    if (isnan(ei) || isnan(er)) {
-      fclose(f);
-      free(xs);
-      return CLI_EXIT_FAILURE;
-    }
-    imex_min = fmin(imex_min, ei);
-    imex_max = fmax(imex_max, ei);
-    if (er > respa_max) {
-      respa_max = er;
-      respa_at = x;
-    }
-    if (isinf(er)) ++respa_blowups;
-    if (er > 1.0) { /* a spike: an energy error larger than H0 itself */
-      ++respa_spikes;
-      const double integer = round(x);
-      if ((n_near == 0 || spike_near[n_near - 1] != integer) && n_near < 16)
-        spike_near[n_near++] = integer;
-    }
-    fprintf(f, "%.6f,%.10g,%.6e,%.6e\n", x, omega, ei, isinf(er) ? 1e10 : er);
-  }
-  fclose(f);
-  free(xs);
+  if (json) {
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "experiment", "resonance");
+    cJSON_AddNumberToObject(j, "points", (double)(r.n_points + r.n_near));
+    cJSON_AddItemToObject(j, "imex_min", cli_json_number(r.imex_min));
+    cJSON_AddItemToObject(j, "imex_max", cli_json_number(r.imex_max));
+    cJSON_AddItemToObject(j, "impulse_max", cli_json_number(r.impulse_max));
+    cJSON_AddNumberToObject(j, "impulse_max_at", r.impulse_max_at);
+    cJSON_AddNumberToObject(j, "impulse_spikes", (double)r.impulse_spikes);
+    cJSON_AddNumberToObject(j, "impulse_blowups", (double)r.impulse_blowups);
+    cJSON_AddItemToObject(j, "spikes_near", cli_json_numbers(r.spike_near, r.n_spike_near));
+    cJSON_AddNumberToObject(j, "wall_s", r.wall_s);
+    cJSON_AddStringToObject(j, "csv", csv);
+    const int rc = cli_json_print(j);
+    if (rc != CLI_EXIT_OK) return rc;
+  } else {
   printf("resonance (seed 000 Fig 2.1): toy problem, h = 0.1, T = 1000, %zu values of "
          "omega h/pi in (0, 4.5] (+ %zu within 0.005 of 1, 2, 3, 4)\n",
-         n_points, 4 * n_near_grid);
-  printf("  imex:               max |H - H0| from %.4e to %.4e (ratio %.2f)\n", imex_min,
-         imex_max, imex_max / imex_min);
-  printf("  impulse (n = 100):  max |H - H0| up to %s%.3e at omega h/pi = %.4f; %zu values "
+         r.n_points, r.n_near);
+  printf("  imex:               max |H - H0| from %.4e to %.4e (ratio %.2f)\n", r.imex_min,
+         r.imex_max, r.imex_max / r.imex_min);
+  printf("  impulse (n = 100):  max |H - H0| up to %.3e at omega h/pi = %.4f; %zu values "
          "above 1 (%zu blow-ups), near omega h/pi =",
-         isinf(respa_max) ? "" : "", isinf(respa_max) ? INFINITY : respa_max, respa_at,
-         respa_spikes, respa_blowups);
-  for (size_t i = 0; i < n_near; ++i) printf(" %g", spike_near[i]);
+         r.impulse_max, r.impulse_max_at, r.impulse_spikes, r.impulse_blowups);
+  for (size_t i = 0; i < r.n_spike_near; ++i) printf(" %g", r.spike_near[i]);
   printf("\n  data: %s\n", csv);
+  }
   if (!plot) return CLI_EXIT_OK;
   snprintf(script, sizeof script, "%s/resonance.gp", dir);
   FILE *g = open_file(script);
@@ -750,10 +689,11 @@ static int experiment_multiscale(void) {
 static int oscillatory_main(int argc, char **argv) {
   const char *dir = "oscillatory-output";
   size_t points = 900;
-  int no_plot = 0;
+  int no_plot = 0, json = 0;
   cli_option options[] = {{"--out", CLI_ARG_STRING, &dir, 0},
                           {"--points", CLI_ARG_COUNT, &points, 0},
-                          {"--no-plot", CLI_ARG_FLAG, &no_plot, 0}};
+                          {"--no-plot", CLI_ARG_FLAG, &no_plot, 0},
+                          {"--json", CLI_ARG_FLAG, &json, 0}};
   const char *positional[1];
   size_t n_positional = 0;
   int rc = cli_parse(CMD, argc, argv, options, sizeof options / sizeof options[0], positional,
@@ -779,8 +719,20 @@ static int oscillatory_main(int argc, char **argv) {
               ex);
     return CLI_EXIT_USAGE;
   }
-  if (points == 0) {
-    cli_error(CMD, "--points must be at least 1");
+  if (points == 0 || points > GM_RESONANCE_MAX_POINTS) {
+    cli_error(CMD,
+              "--points %zu: must be in [1, %d] (each point is two runs of 10^4 steps, about "
+              "17 ms; %d points take about 6 minutes)",
+              points, GM_RESONANCE_MAX_POINTS, GM_RESONANCE_MAX_POINTS);
+    return CLI_EXIT_USAGE;
+  }
+  if (json && strcmp(ex, "resonance") != 0) {
+    cli_error(CMD, "--json: so far only 'resonance' prints JSON (its computation is in the "
+              "library); '%s' prints a table", ex);
+    return CLI_EXIT_USAGE;
+  }
+  if (options[1].seen && !all && strcmp(ex, "resonance") != 0) {
+    cli_error(CMD, "--points is an option of 'resonance' (and 'all'), not of '%s'", ex);
     return CLI_EXIT_USAGE;
   }
   if (!no_plot && !cli_gnuplot_available()) {
@@ -788,7 +740,7 @@ static int oscillatory_main(int argc, char **argv) {
     return CLI_EXIT_USAGE;
   }
   if ((rc = make_directory(dir)) != CLI_EXIT_OK) return rc;
-  if (all || strcmp(ex, "resonance") == 0) rc = experiment_resonance(dir, points, !no_plot);
+  if (all || strcmp(ex, "resonance") == 0) rc = experiment_resonance(dir, points, !no_plot, json);
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "fpu") == 0)) rc = experiment_fpu(dir, !no_plot, 0);
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "fpu-long") == 0))
     rc = experiment_fpu(dir, !no_plot, 1);

@@ -137,7 +137,19 @@ int cli_pde_nls_long(int argc, char **argv) {
                           {"--out", CLI_ARG_STRING, &dir, 0},
                           {"--no-plot", CLI_ARG_FLAG, &no_plot, 0}};
   int rc = cli_parse("pde nls-long", argc, argv, options, 8, NULL, 0, &n_pos);
-  if (rc != CLI_EXIT_OK) return rc == CLI_HELP ? CLI_EXIT_OK : rc;
+  if (rc == CLI_HELP) {
+    fputs("usage: geomint pde nls-long [--periods P] [--n N] [--dt DT] [--every K] [--out DIR]\n"
+          "                            [--no-plot] [--only preissmann|box-sdirk2] [--plot-only]\n"
+          "(see 'geomint pde --help' and docs/pde.md)\n",
+          stdout);
+    return CLI_EXIT_OK;
+  }
+  if (rc != CLI_EXIT_OK) return rc;
+  if (options[5].seen && every == 0) {
+    cli_error("pde nls-long", "--every 0: rows are written every K >= 1 steps (default: the run "
+              "in 2000 rows)");
+    return CLI_EXIT_USAGE;
+  }
   if (cli_check_positive("pde nls-long", "--dt", dt) != CLI_EXIT_OK ||
       cli_check_positive("pde nls-long", "--periods", periods) != CLI_EXIT_OK ||
       cli_check_step_count("pde nls-long", periods * NLS_PERIOD, dt) != CLI_EXIT_OK)

@@ -2,11 +2,13 @@
  * NLS (moving soliton) from its exact solution, with the error against it at T, the final state
  * as CSV and a space-time VTK image (.vti: x along the first axis, t along the second; cell
  * data u, exact and error — ParaView opens it directly). */
+#include <cJSON.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "cli/cli.h"
 
@@ -67,6 +69,7 @@ static double shown(const run_equation *e, const double *s) {
 static const char run_usage[] =
     "usage: geomint pde run EQUATION [--scheme NAME] [--n N] [--dt DT] [--T T] [--dirichlet]\n"
     "                       [--omega W] [--c C] [--out FILE.csv] [--vtk FILE.vti] [--frames M]\n"
+    "                       [--json]\n"
     "\n"
     "EQUATION, on [-20, 20) periodic from its exact solution at t = 0:\n"
     "  sine-gordon  standing breather, frequency --omega (default 0.5); default scheme ms, T 10\n"
@@ -79,11 +82,17 @@ static const char run_usage[] =
     "--vtk writes a space-time VTK image (cell data u, exact, error; x along the first axis,\n"
     "t along the second, M + 1 rows; gauss-prk's points drawn as uniform cells).\n";
 
+static double now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 int cli_pde_run(int argc, char **argv) {
   const char *scheme_name = NULL, *out = NULL, *vtk = NULL, *positional[1] = {NULL};
   size_t n = 200, frames = 100, n_pos = 0;
   double dt = 0.1, T = 0.0;
-  int dirichlet = 0;
+  int dirichlet = 0, json = 0;
   run_params q = {0.5, 1.0};
   cli_option options[] = {{"--scheme", CLI_ARG_STRING, &scheme_name, 0},
                           {"--n", CLI_ARG_COUNT, &n, 0},
@@ -94,8 +103,9 @@ int cli_pde_run(int argc, char **argv) {
                           {"--out", CLI_ARG_STRING, &out, 0},
                           {"--vtk", CLI_ARG_STRING, &vtk, 0},
                           {"--frames", CLI_ARG_COUNT, &frames, 0},
-                          {"--dirichlet", CLI_ARG_FLAG, &dirichlet, 0}};
-  int rc = cli_parse("pde run", argc, argv, options, 10, positional, 1, &n_pos);
+                          {"--dirichlet", CLI_ARG_FLAG, &dirichlet, 0},
+                          {"--json", CLI_ARG_FLAG, &json, 0}};
+  int rc = cli_parse("pde run", argc, argv, options, 11, positional, 1, &n_pos);
   if (rc == CLI_HELP) {
     fputs(run_usage, stdout);
     return CLI_EXIT_OK;
@@ -108,7 +118,20 @@ int cli_pde_run(int argc, char **argv) {
     cli_error("pde run", "which equation? sine-gordon, kdv or nls");
     return CLI_EXIT_USAGE;
   }
-  if (T == 0.0) T = e->T;
+  if (!options[3].seen) T = e->T; /* --T 0 is refused below, not taken as the default */
+  /* an option the equation does not use is an error, not ignored */
+  if (options[4].seen && strcmp(e->name, "sine-gordon") != 0) {
+    cli_error("pde run", "--omega is an option of sine-gordon (the breather), not of %s", e->name);
+    return CLI_EXIT_USAGE;
+  }
+  if (options[5].seen && strcmp(e->name, "kdv") != 0) {
+    cli_error("pde run", "--c is an option of kdv (the soliton's speed), not of %s", e->name);
+    return CLI_EXIT_USAGE;
+  }
+  if (options[8].seen && vtk == NULL) {
+    cli_error("pde run", "--frames sets the rows of --vtk; give --vtk FILE.vti");
+    return CLI_EXIT_USAGE;
+  }
   if (scheme_name == NULL) scheme_name = e->default_scheme;
   if (cli_check_positive("pde run", "--dt", dt) != CLI_EXIT_OK ||
       cli_check_positive("pde run", "--T", T) != CLI_EXIT_OK ||
@@ -182,6 +205,7 @@ int cli_pde_run(int argc, char **argv) {
   double e0 = gm_pde_energy(p), m0 = gm_pde_momentum(p), ex[GM_PDE_MAX_DIM];
   size_t row = 0, done = 0;
   rc = CLI_EXIT_OK;
+  const double wall0 = now();
   for (;;) {
     if (rows != NULL && row < n_rows) {
       const double *s = gm_pde_state(p);
@@ -203,6 +227,7 @@ int cli_pde_run(int argc, char **argv) {
     }
     done += m;
   }
+  const double wall_s = now() - wall0;
   const double *s = gm_pde_state(p);
   double t = gm_pde_time(p), emax = 0.0;
   for (size_t i = 0; rc == CLI_EXIT_OK && i < n; i++) {
@@ -211,7 +236,30 @@ int cli_pde_run(int argc, char **argv) {
                           ? hypot(s[i * d] - ex[0], s[i * d + 1] - ex[1])
                           : fabs(shown(e, s + i * d) - shown(e, ex)));
   }
-  if (rc == CLI_EXIT_OK) {
+  cJSON *j = NULL;
+  if (rc == CLI_EXIT_OK && json) {
+    j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "equation", e->name);
+    cJSON_AddStringToObject(j, "scheme", scheme->name);
+    cJSON_AddNumberToObject(j, "n", (double)n);
+    cJSON_AddNumberToObject(j, "dx", h);
+    cJSON_AddNumberToObject(j, "dt", dt);
+    cJSON_AddNumberToObject(j, "steps", (double)steps);
+    cJSON_AddNumberToObject(j, "t_final", t);
+    cJSON_AddBoolToObject(j, "dirichlet", dirichlet);
+    if (isfinite(e0)) {
+      cJSON_AddItemToObject(j, "energy", cli_json_number(gm_pde_energy(p)));
+      cJSON_AddItemToObject(j, "rel_energy_change",
+                            cli_json_number(fabs(gm_pde_energy(p) - e0) / fabs(e0)));
+      cJSON_AddItemToObject(j, "momentum", cli_json_number(gm_pde_momentum(p)));
+      cJSON_AddItemToObject(j, "momentum_change", cli_json_number(gm_pde_momentum(p) - m0));
+    }
+    if (eq.has_gauge) cJSON_AddItemToObject(j, "mass", cli_json_number(gm_pde_mass(p)));
+    if (eq.has_norm) cJSON_AddItemToObject(j, "charge", cli_json_number(gm_pde_norm(p)));
+    cJSON_AddItemToObject(j, "max_abs_error", cli_json_number(emax));
+    cJSON_AddNumberToObject(j, "wall_s", wall_s);
+  }
+  if (rc == CLI_EXIT_OK && !json) {
     printf("pde run %s --scheme %s: n %zu, dx %g, dt %g, %zu steps to t = %g%s\n", e->name,
            scheme->name, n, h, dt, steps, t, dirichlet ? ", Dirichlet ends" : "");
     if (isfinite(e0)) {
@@ -247,6 +295,8 @@ int cli_pde_run(int argc, char **argv) {
       if (fclose(f) != 0) {
         cli_error("pde run", "cannot write '%s': %s", out, strerror(errno));
         rc = CLI_EXIT_FAILURE;
+      } else if (j != NULL) {
+        cJSON_AddStringToObject(j, "csv", out);
       } else {
         printf("  state written to %s\n", out);
       }
@@ -272,11 +322,17 @@ int cli_pde_run(int argc, char **argv) {
       if (gm_vti_write(vtk, &img, arrays, 3, t, GM_VTI_BASE64, &err) != GM_OK) {
         cli_error("pde run", "%s", err.message);
         rc = CLI_EXIT_FAILURE;
+      } else if (j != NULL) {
+        cJSON_AddStringToObject(j, "vtk", vtk);
       } else {
         printf("  space-time image (%zu x %zu cells, %s) written to %s\n", n, row, e->shown, vtk);
       }
       free(packed);
     }
+  }
+  if (j != NULL) {
+    if (rc == CLI_EXIT_OK) rc = cli_json_print(j);
+    else cJSON_Delete(j);
   }
   free(rows);
   gm_pde_free(p);

@@ -36,6 +36,13 @@ const char cli_pde_spectral_usage[] =
     "     [-20, 20) (default N 200, dt 0.1 <= dx, T 10); prints the error and the strip energy;\n"
     "     --out writes x,u,exact at T.\n";
 
+/* --help of schrodinger, spectral-star, tent-vi: the usage lines (the text's first line, which
+ * pde --help prints after its own, is indented for that) */
+static void print_help(void) {
+  fputs("usage:", stdout);
+  fputs(cli_pde_spectral_usage + strlen("      "), stdout);
+}
+
 static int prepare_dir(const char *cmd, const char *dir, int no_plot) {
   if (strchr(dir, '\'') != NULL) {
     cli_error(cmd, "--out: the directory name may not contain a quote");
@@ -347,11 +354,20 @@ int cli_pde_schrodinger(int argc, char **argv) {
                           {"--T", CLI_ARG_DOUBLE, &T, 0}};
   int rc = cli_parse("pde schrodinger", argc, argv, options, 5, positional, 1, &n_pos);
   if (rc == CLI_HELP) {
-    fputs(cli_pde_spectral_usage, stdout);
+    print_help();
     return CLI_EXIT_OK;
   }
   if (rc != CLI_EXIT_OK) return rc;
-  if (n_pos == 1 && strcmp(positional[0], "eigen") == 0) return sch_eigen(dir, no_plot);
+  if (n_pos == 1 && strcmp(positional[0], "eigen") == 0) {
+    /* eigen scans its own N and dt (an option it would ignore is an error) */
+    for (size_t i = 2; i < 5; ++i)
+      if (options[i].seen) {
+        cli_error("pde schrodinger", "%s is an option of 'compare'; 'eigen' scans N and dt itself",
+                  options[i].name);
+        return CLI_EXIT_USAGE;
+      }
+    return sch_eigen(dir, no_plot);
+  }
   if (n_pos == 1 && strcmp(positional[0], "compare") == 0)
     return sch_compare(n, dt, T, dir, no_plot);
   cli_error("pde schrodinger", "which experiment? eigen or compare");
@@ -391,7 +407,7 @@ int cli_pde_spectral_star(int argc, char **argv) {
                           {"--courant", CLI_ARG_DOUBLE, &courant, 0}};
   int rc = cli_parse(cmd, argc, argv, options, 4, NULL, 0, &n_pos);
   if (rc == CLI_HELP) {
-    fputs(cli_pde_spectral_usage, stdout);
+    print_help();
     return CLI_EXIT_OK;
   }
   if (rc != CLI_EXIT_OK) return rc;
@@ -518,7 +534,7 @@ int cli_pde_tent_vi(int argc, char **argv) {
                           {"--out", CLI_ARG_STRING, &out, 0}};
   int rc = cli_parse(cmd, argc, argv, options, 6, NULL, 0, &n_pos);
   if (rc == CLI_HELP) {
-    fputs(cli_pde_spectral_usage, stdout);
+    print_help();
     return CLI_EXIT_OK;
   }
   if (rc != CLI_EXIT_OK) return rc;

@@ -11,7 +11,9 @@
 #include "cli/reduction_phases.h"
 
 static const char usage[] =
-    "usage: geomint reduction EXPERIMENT [--out DIR] [--no-plot] [--dt H] [--t-end T]\n\n"
+    "usage: geomint reduction j2-satellite|double-spherical-pendulum [--out DIR] [--no-plot]\n"
+    "                           [--dt H] [--t-end T] [--mu M] [--x0 LIST]\n"
+    "       geomint reduction phases [--out DIR] [--no-plot]\n\n"
     "Discrete Routh reduction experiments of seed 001 (Leok, thesis 2004, sections 2.9-2.10):\n"
     "  j2-satellite     satellite about an oblate planet, J2 in {0, 0.05}, midpoint discrete\n"
     "                   Lagrangian (discrete Routh equations) at dt = 0.3 against a 6th-order\n"
@@ -560,7 +562,17 @@ static int routh_main(int argc, char **argv) {
   if ((options[4].seen && cli_check_positive("reduction", "--dt", dt)) ||
       (options[5].seen && cli_check_positive("reduction", "--t-end", t_end)))
     return CLI_EXIT_USAGE;
-  if (strcmp(pos[0], "phases") == 0) {
+  /* an option the experiment does not use is an error, not ignored */
+  const int phases = strcmp(pos[0], "phases") == 0, j2_name = strcmp(pos[0], "j2-satellite") == 0;
+  for (size_t i = 1; i < 6; ++i) {
+    const int dsp_only = i == 1 || i == 2, run_only = i >= 4;
+    if (options[i].seen && ((phases && (dsp_only || run_only)) || (j2_name && dsp_only))) {
+      cli_error("reduction", "%s is not an option of '%s'%s", options[i].name, pos[0],
+                dsp_only ? " (double-spherical-pendulum only)" : "");
+      return CLI_EXIT_USAGE;
+    }
+  }
+  if (phases) {
     rc = cli_reduction_phases();
     if (rc != CLI_EXIT_OK || !options[0].seen) return rc; /* files only with --out */
     if (make_directory(dir)) return CLI_EXIT_FAILURE;
@@ -592,6 +604,10 @@ static int routh_main(int argc, char **argv) {
   }
   if (!options[4].seen) dt = j2 ? 0.3 : 0.01;
   if (!options[5].seen) t_end = j2 ? 150.0 : 20.0;
+  if (dt > t_end) {
+    cli_error("reduction", "--dt %g is longer than the run (t-end %g)", dt, t_end);
+    return CLI_EXIT_USAGE;
+  }
   if (t_end / dt > 1e6) {
     cli_error("reduction", "t-end/dt = %g steps is too many (at most 1e6)", t_end / dt);
     return CLI_EXIT_USAGE;

@@ -595,5 +595,21 @@ Test(cli, demo) {
     csv_free(&t);
   }
   cr_assert(file_is_png(path_in_tmp("out/kepler-energy-error.png")));
+  /* the fields half: a Yee scene's picture and the mesh leapfrog's invariants (measured: Gauss
+   * drift 1.554e-15, div B 0, leapfrog energy 8.498074691 at the start and the end) */
+  cr_assert(file_is_png(path_in_tmp("out/yee-field.png")));
+  cr_assert(file_is_png(path_in_tmp("out/mesh-energy.png")));
+  const char *gauss = strstr(r.out, "max Gauss drift ");
+  cr_assert_not_null(gauss, "%s", r.out);
+  cr_expect_lt(strtod(gauss + strlen("max Gauss drift "), NULL), 1e-14, "%s", gauss);
+  cr_expect(strstr(r.out, "energy: start 8.498074691, end plain") != NULL &&
+                strstr(r.out, "leapfrog 8.498074691,") != NULL, "%s", r.out);
+  char *readme = read_file(path_in_tmp("out/README.md"));
+  static const char *const pictures[] = {"`kepler-energy-error.png`", "`yee-field.png`",
+                                         "`mesh-energy.png`"};
+  for (size_t i = 0; i < 3; ++i)
+    cr_expect(strstr(readme, pictures[i]) != NULL, "README.md lacks %s: %s", pictures[i], readme);
+  cr_expect_eq(count_lines(readme), 5, "%s", readme); /* title, blank, one line a picture */
+  free(readme);
   run_output_free(&r);
 }

@@ -215,3 +215,46 @@ Test(cli_hostile, stage_count_by_name) {
   cr_expect(strstr(r.err, "unknown method 'gaus-12'") != NULL, "%s", r.err);
   run_output_free(&r);
 }
+
+/* Issue 26 items 2-5 and 9 (inputs of ../shared/hostile/): sizes past a documented bound, step
+ * counts that would overflow, NaN coordinates, and options a command would ignore are refused
+ * at once with exit 2 and one line naming the option. */
+Test(cli_hostile, issue26_refused_with_the_option_named) {
+  static const struct {
+    const char *args, *want;
+  } cases[] = {
+      {"maxwell mesh --rect 100000", "--rect 100000: at most 1000"},
+      {"maxwell mesh --rect 8 --fraction 0 --avi", "--fraction 0: must be in"},
+      {"maxwell mesh --rect 8 --dt 0", "--dt must be a positive finite number"},
+      {"maxwell mesh --rect 8 --avi --fraction 1e-12", "--fraction 1e-12"},
+      {"maxwell mesh --rect 8 --avi --t-end 1e15", "--t-end 1e+15 is"},
+      {"maxwell mesh --rect 8 --t-end 1e15", "at most 1e+09"},
+      {"maxwell mesh --rect 8 --dt 1e-300 --t-end 0.5", "steps of dt 1e-300"},
+      {"maxwell mesh --rect 8 --material 0,0,1,1,1e-300,1", "--material 0,0,1,1,1e-300,1"},
+      {"maxwell mesh --rect 8 --probe nan,0.2", "--probe nan,0.2: the coordinates must be"},
+      {"maxwell mesh --rect 8 --courant 0.5 --avi", "--courant is not an option of --avi"},
+      {"maxwell mesh-cavity --n0 2", "--n0 2: must be in [3, 40]"},
+      {"maxwell mesh-cavity --t-end 1e15", "--t-end 1e+15: at most"},
+      {"maxwell e4 --time 1e9", "bytes"},
+      {"maxwell e4 --n 3 --time 1e-300", "shorter than one step"},
+      {"oscillatory resonance --points 10000000 --no-plot", "--points 10000000: must be in"},
+      {"pde run sine-gordon --T 0", "--T"},
+      {"pde run sine-gordon --c 2", "--c is an option of kdv"},
+      {"pde run kdv --omega 0.3", "--omega is an option of sine-gordon"},
+      {"pde schrodinger eigen --n 5", "--n is an option of 'compare'"},
+      {"pde nls-long --every 0 --no-plot", "--every 0"},
+      {"reduction j2-satellite --mu 3", "--mu is not an option of 'j2-satellite'"},
+      {"reduction j2-satellite --dt 1e300", "--dt 1e+300 is longer than the run"},
+      {"reduction phases --dt 0.1", "--dt is not an option of 'phases'"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+    const double t0 = seconds();
+    run_output r = run_cli("%s", cases[i].args);
+    cr_expect_eq(r.status, 2, "%s: exit %d, %s", cases[i].args, r.status, r.err);
+    cr_expect(strstr(r.err, cases[i].want) != NULL, "%s: want '%s' in: %s", cases[i].args,
+              cases[i].want, r.err);
+    expect_one_clean_line(r.err);
+    cr_expect_lt(seconds() - t0, 5.0, "%s took %.1f s", cases[i].args, seconds() - t0);
+    run_output_free(&r);
+  }
+}

@@ -63,6 +63,7 @@ Test(docs, generated_tables_are_current) {
   check_generated("README.md", "problems", "list problems --markdown");
   check_generated("docs/methods.md", "methods", "list methods --markdown");
   check_generated("docs/problems.md", "problems", "list problems --markdown");
+  check_generated("docs/experiments.md", "experiments", "experiments list --markdown");
 }
 
 Test(docs, readme_example_is_the_compiled_example_and_runs) {

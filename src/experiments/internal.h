@@ -1,0 +1,23 @@
+/* Private helpers of the experiments module; never installed. */
+#ifndef GM_EXPERIMENTS_INTERNAL_H
+#define GM_EXPERIMENTS_INTERNAL_H
+
+#include <stddef.h>
+
+#include "geomint/experiments.h"
+
+/* Monotonic wall-clock seconds (the runs' wall_s). */
+double gm_experiment_clock(void);
+/* dir/name into buf; GM_EINVAL when it does not fit. */
+gm_status gm_experiment_path(char *buf, size_t cap, const char *dir, const char *name);
+/* Append a named number (name: a static string) / a written file to a result; extra entries past
+ * the capacity are dropped (the table's rows stay within it). */
+void gm_experiment_add(gm_experiment_result *result, const char *name, double value);
+void gm_experiment_file(gm_experiment_result *result, const char *dir, const char *name);
+
+/* The rows' runners at their defaults (one file each). */
+gm_status gm_experiment_run_e4(const char *dir, gm_experiment_result *result, gm_error *err);
+gm_status gm_experiment_run_resonance(const char *dir, gm_experiment_result *result,
+                                      gm_error *err);
+
+#endif

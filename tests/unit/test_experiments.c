@@ -1,0 +1,87 @@
+/* The experiments module: the table is complete and consistent, and the library's experiments
+ * reproduce the numbers the docs show (docs/maxwell.md E4, docs/oscillatory.md resonance). */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geomint/experiments.h"
+
+Test(experiments, table_rows_are_complete_and_unique) {
+  const size_t n = gm_experiment_count();
+  cr_assert_geq(n, 20, "%zu rows", n);
+  size_t in_library = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const gm_experiment_info *e = gm_experiment_at(i);
+    cr_assert_not_null(e);
+    const char *fields[] = {e->name, e->seed, e->shows, e->seed_result, e->command, e->run_time,
+                            e->doc};
+    for (size_t k = 0; k < sizeof fields / sizeof fields[0]; ++k)
+      cr_expect(fields[k] != NULL && fields[k][0] != '\0', "row %s: field %zu empty", e->name, k);
+    cr_expect(strncmp(e->doc, "docs/", 5) == 0, "row %s: doc %s", e->name, e->doc);
+    cr_expect_eq(gm_experiment_find(e->name), e, "row %s is not found by its name", e->name);
+    in_library += e->run != NULL;
+  }
+  cr_expect_null(gm_experiment_at(n));
+  cr_expect_null(gm_experiment_find("no-such-experiment"));
+  cr_expect_geq(in_library, 2);
+}
+
+/* The default E4 run is the one docs/maxwell.md prints (measured: 3620 steps, plain ranges
+ * 5.161e-2 and 9.536e-3, leapfrog drift 4.108e-15). */
+Test(experiments, e4_default_run_is_the_documented_one) {
+  gm_e4_config c = gm_e4_defaults();
+  gm_e4_result r;
+  gm_error err = {{0}};
+  cr_assert_eq(gm_experiment_e4(&c, NULL, &r, &err), GM_OK, "%s", err.message);
+  cr_expect_eq(r.steps, 3620);
+  cr_expect_eq(r.n_samples, 3621);
+  cr_expect_float_eq(r.plain_initial, 0.323183046, 1e-9);
+  cr_expect_float_eq(r.plain_range_first_half, 5.161e-2, 1e-5);
+  cr_expect_float_eq(r.plain_range_second_half, 9.536e-3, 1e-6);
+  cr_expect_lt(r.leapfrog_max_rel_drift, 2e-14, "%g", r.leapfrog_max_rel_drift);
+  /* bounded: the second half oscillates less than the first */
+  cr_expect_lt(r.plain_range_second_half, r.plain_range_first_half);
+  gm_e4_result_clear(&r);
+  cr_expect_null(r.t);
+}
+
+Test(experiments, e4_refuses_sizes_with_a_message) {
+  gm_e4_config c = gm_e4_defaults();
+  gm_e4_result r;
+  gm_error err = {{0}};
+  c.t_end = 1e9;
+  cr_expect_eq(gm_experiment_e4(&c, NULL, &r, &err), GM_EINVAL);
+  cr_expect(strstr(err.message, "bytes") != NULL, "%s", err.message);
+  c.n = 3;
+  c.t_end = 1e-300;
+  cr_expect_eq(gm_experiment_e4(&c, NULL, &r, &err), GM_EINVAL);
+  cr_expect(strstr(err.message, "shorter than one step") != NULL, "%s", err.message);
+  c = gm_e4_defaults();
+  c.n = 1;
+  cr_expect_eq(gm_experiment_e4(&c, NULL, &r, &err), GM_EINVAL);
+  c = gm_e4_defaults();
+  c.t_end = NAN;
+  cr_expect_eq(gm_experiment_e4(&c, NULL, &r, &err), GM_EINVAL);
+  cr_expect_eq(gm_experiment_e4(&c, "/nonexistent/dir", &r, &err), GM_EINVAL);
+}
+
+/* 9 uniform points and the 48 near the integers: IMEX flat at 1.2501e-3 .. 1.2531e-3 (the
+ * notes' independent check: 1.253e-3), the impulse method blowing up just below 1 (1.347e13 at
+ * omega h/pi = 0.9995 in the 948-point run). */
+Test(experiments, resonance_reproduces_fig_2_1, .timeout = 60) {
+  gm_resonance_result r;
+  gm_error err = {{0}};
+  cr_assert_eq(gm_experiment_resonance(9, NULL, &r, &err), GM_OK, "%s", err.message);
+  cr_expect_eq(r.n_points + r.n_near, 57);
+  cr_expect_geq(r.imex_min, 1.2500e-3, "%.6e", r.imex_min);
+  cr_expect_leq(r.imex_max, 1.2532e-3, "%.6e", r.imex_max);
+  cr_expect_gt(r.impulse_max, 1e12, "%g", r.impulse_max);
+  cr_expect_float_eq(r.impulse_max_at, 0.9995, 1e-9);
+  cr_expect_geq(r.n_spike_near, 2);
+  cr_expect_float_eq(r.spike_near[0], 1.0, 0.0);
+  cr_expect_eq(gm_experiment_resonance(GM_RESONANCE_MAX_POINTS + 1, NULL, &r, &err), GM_EINVAL);
+  cr_expect(strstr(err.message, "points") != NULL, "%s", err.message);
+  cr_expect_eq(gm_experiment_resonance(0, NULL, &r, &err), GM_EINVAL);
+}
