@@ -18,6 +18,7 @@
 #include "geomint/celestial.h"
 #include "geomint/reduction.h"
 #include "geomint/pde.h"
+#include "geomint/fluids.h"
 
 #define GM_VERSION_MAJOR 0
 #define GM_VERSION_MINOR 1
