@@ -50,4 +50,10 @@ struct gm_fluid {
  * given by the wall velocity). */
 void gm_fluid_circulation_of(const gm_fluid *f, const double *psi, double *gamma);
 
+/* Net convective outflow of the vertex field q from each dual cell with the velocity of psi:
+ * − d0ᵀ ⋆1 (q ∧ Sψ) plus the boundary half-edge fluxes (the d i_u dω and −δ(ω∧θ) terms, ×⋆0). */
+void gm_fluid_convective_outflow(gm_fluid *f, const double *q, const double *psi, double *out);
+/* ∫ φ_v ∇ψ × ∇ζ per vertex (the P1 Jacobian of the midpoint scheme). */
+void gm_fluid_jacobian(gm_fluid *f, const double *psi, const double *zeta, double *rate);
+
 #endif

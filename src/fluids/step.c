@@ -15,7 +15,7 @@
  * q = ζ (i_u of the dual 2-form ζ is ⋆(ζ ∧ u♭), eq. 150 [R]) and −δ(ω ∧ θ) of (152c) for q = θ,
  * both times ⋆0. On the boundary, the flux through the two halves of each boundary edge, half of
  * (ψ_head − ψ_tail) each, leaves with the cell's own value (zero on walls; outflow only). */
-static void convective_outflow(gm_fluid *f, const double *q, const double *psi, double *out) {
+void gm_fluid_convective_outflow(gm_fluid *f, const double *q, const double *psi, double *out) {
   gm_csr_matvec(f->S, 1.0, psi, 0.0, f->u_edge);
   memset(out, 0, f->nv * sizeof *out);
   for (size_t e = 0; e < f->ne; ++e) {
@@ -53,7 +53,7 @@ static gm_status solve_psi(gm_fluid *f, gm_sparse_cholesky *ch, const double *rh
  * here it is lagged to θ^n so that the matrix (⋆0/dt + κL) is factorized once at create. */
 static gm_status scalar_step(gm_fluid *f, const double *psi_half) {
   if (!f->n_wfree) return GM_OK;
-  convective_outflow(f, f->theta, psi_half, f->out);
+  gm_fluid_convective_outflow(f, f->theta, psi_half, f->out);
   for (size_t i = 0; i < f->n_wfree; ++i) {
     size_t v = f->wfree_list[i];
     f->rhs_w[i] = f->star0[v] * f->theta[v] / f->opt.dt - f->out[v] + f->c_theta[i];
@@ -68,19 +68,19 @@ static gm_status scalar_step(gm_fluid *f, const double *psi_half) {
  * (153) Γ^{n+½} = Γ^n − (dt/2) C(ζ^n, ψ^n) − (dt/2) ν L ζ^{n+½}   (convection explicit)
  * (154) Γ^{n+1} = Γ^n − dt C(ζ^{n+½}, ψ^{n+½}) − dt ν L ζ^{n+1}
  * (156) Γ = Lψ + b (⋆ω = dψ), ζ = ⋆0⁻¹ Γ, both solved for ψ on the free vertices;
- * C = convective_outflow, the d i_u dω term; ν L ζ = ν d0ᵀ⋆1 d0 ⋆0⁻¹ Γ is ν d δ d ω on dual
+ * C = gm_fluid_convective_outflow, the d i_u dω term; ν L ζ = ν d0ᵀ⋆1 d0 ⋆0⁻¹ Γ is ν d δ d ω on dual
  * 2-forms. Only the free vertices' rows are equations: on walls and inflows Γ = Lψ + b is the
  * circulation the no-slip or inflow velocity gives (the vorticity boundary condition). */
 static gm_status seed_step(gm_fluid *f) {
   const double dt = f->opt.dt;
   vorticity_of(f, f->gamma, f->zeta);
-  convective_outflow(f, f->zeta, f->psi, f->out);
+  gm_fluid_convective_outflow(f, f->zeta, f->psi, f->out);
   for (size_t v = 0; v < f->nv; ++v) f->rhs[v] = f->gamma[v] - 0.5 * dt * f->out[v];
   gm_status st = solve_psi(f, f->m_half, f->rhs, f->c_half, f->psi_h);
   if (st) return st;
   gm_fluid_circulation_of(f, f->psi_h, f->gamma_h);
   vorticity_of(f, f->gamma_h, f->zeta_h);
-  convective_outflow(f, f->zeta_h, f->psi_h, f->out);
+  gm_fluid_convective_outflow(f, f->zeta_h, f->psi_h, f->out);
   for (size_t v = 0; v < f->nv; ++v) f->rhs[v] = f->gamma[v] - dt * f->out[v];
   st = solve_psi(f, f->m_full, f->rhs, f->c_full, f->psi_k);
   if (st) return st;
@@ -95,7 +95,7 @@ static gm_status seed_step(gm_fluid *f) {
  * form t(a, b, c) = ∫ a ∇b × ∇c is integrated exactly, so it is antisymmetric in (b, c) and, with
  * ψ = 0 on the boundary, in (a, b): Σ ψ_v Γ̇_v = Σ ζ_v Γ̇_v = Σ Γ̇_v = 0 (energy ½ψᵀLψ, enstrophy,
  * total vorticity). The vorticity equation ζ_t + u·∇ζ = 0 with u = (ψ_y, −ψ_x). */
-static void jacobian(gm_fluid *f, const double *psi, const double *zeta, double *rate) {
+void gm_fluid_jacobian(gm_fluid *f, const double *psi, const double *zeta, double *rate) {
   memset(rate, 0, f->nv * sizeof *rate);
   for (size_t t = 0; t < f->nt; ++t) {
     const size_t *v = f->tri + 3 * t;
@@ -124,7 +124,7 @@ static gm_status midpoint_step(gm_fluid *f) {
     gm_status st = solve_psi(f, f->poisson, f->gamma_h, NULL, f->psi_h);
     if (st) return st;
     vorticity_of(f, f->gamma_h, f->zeta_h);
-    jacobian(f, f->psi_h, f->zeta_h, f->out);
+    gm_fluid_jacobian(f, f->psi_h, f->zeta_h, f->out);
     double change = 0.0;
     for (size_t v = 0; v < f->nv; ++v) {
       double g = f->gamma[v] + dt * f->out[v];
