@@ -28,6 +28,7 @@ extern const cli_command cli_maxwell_command; /* maxwell.c */
 extern const cli_command cli_routh_command;   /* reduction.c, alias of reduction */
 extern const cli_command cli_reduction_command; /* reduction.c */
 extern const cli_command cli_pde_command;
+extern const cli_command cli_fluid_command; /* fluid.c */
 
 /* "geomint COMMAND: message" on stderr, one line. */
 #if defined(__GNUC__)

@@ -79,3 +79,177 @@ gm_status gm_fluid_groups_rectangle(const gm_mesh *mesh, gm_fluid_groups **out, 
   *out = g;
   return GM_OK;
 }
+
+/* ---- Gmsh ASCII 2.2: $PhysicalNames and the line elements (type 1) ------------------------- */
+
+typedef struct vkey {
+  double x, y;
+  size_t v;
+} vkey;
+
+static int cmp_vkey(const void *a, const void *b) {
+  const vkey *p = a, *q = b;
+  if (p->x != q->x) return p->x < q->x ? -1 : 1;
+  if (p->y != q->y) return p->y < q->y ? -1 : 1;
+  return 0;
+}
+
+static size_t find_vertex(const vkey *keys, size_t n, double x, double y) {
+  vkey k = {x, y, 0};
+  const vkey *hit = bsearch(&k, keys, n, sizeof *keys, cmp_vkey);
+  return hit ? hit->v : SIZE_MAX;
+}
+
+typedef struct msh_node {
+  long id;
+  double x, y;
+} msh_node;
+
+static int cmp_node(const void *a, const void *b) {
+  const msh_node *p = a, *q = b;
+  return (p->id > q->id) - (p->id < q->id);
+}
+
+gm_status gm_fluid_groups_read_msh(const char *path, const gm_mesh *mesh, gm_fluid_groups **out,
+                                   gm_error *err) {
+  if (!path || !mesh || !out) return gm_error_set(err, GM_EINVAL, "fluid groups: NULL argument");
+  *out = NULL;
+  if (mesh->N != 2) return gm_error_set(err, GM_EINVAL, "fluid groups: needs a mesh in the plane");
+  FILE *fp = fopen(path, "r");
+  if (!fp) return gm_error_set(err, GM_EIO, "%s: cannot open", path);
+  gm_status st = GM_OK;
+  char line[512], msg[GM_ERRMSG_SIZE] = "";
+  size_t n_names = 0, n_nodes = 0, n_lines = 0, cap_lines = 0, lineno = 0;
+  char (*names)[GM_FLUID_NAME_SIZE] = NULL;
+  long *name_tag = NULL;
+  msh_node *nodes = NULL;
+  long (*lines)[3] = NULL; /* node, node, physical tag */
+  vkey *keys = NULL;
+  gm_fluid_groups *g = NULL;
+  int version_ok = 0;
+#define MSH_FAIL(...)                                        \
+  do {                                                       \
+    st = GM_EINVAL;                                          \
+    snprintf(msg, sizeof msg, __VA_ARGS__);                  \
+    goto done;                                               \
+  } while (0)
+  while (fgets(line, sizeof line, fp)) {
+    ++lineno;
+    if (strncmp(line, "$MeshFormat", 11) == 0) {
+      double ver = 0;
+      int ft = 1;
+      if (!fgets(line, sizeof line, fp) || sscanf(line, "%lf %d", &ver, &ft) != 2)
+        MSH_FAIL("%s: line %zu: bad $MeshFormat", path, lineno + 1);
+      ++lineno;
+      if (ver < 2.0 || ver >= 3.0 || ft != 0)
+        MSH_FAIL("%s: boundary groups are read from ASCII Gmsh 2.2 files (this is version %g%s)",
+                 path, ver, ft ? ", binary" : "");
+      version_ok = 1;
+    } else if (strncmp(line, "$PhysicalNames", 14) == 0) {
+      if (!fgets(line, sizeof line, fp) || sscanf(line, "%zu", &n_names) != 1 || n_names > 100000)
+        MSH_FAIL("%s: line %zu: bad count of physical names", path, lineno + 1);
+      ++lineno;
+      names = calloc(n_names ? n_names : 1, sizeof *names);
+      name_tag = calloc(n_names ? n_names : 1, sizeof *name_tag);
+      if (!names || !name_tag) { st = GM_ENOMEM; snprintf(msg, sizeof msg, "out of memory"); goto done; }
+      for (size_t i = 0; i < n_names; ++i) {
+        int dim;
+        long tag;
+        char nm[256];
+        ++lineno;
+        if (!fgets(line, sizeof line, fp) || sscanf(line, "%d %ld \"%255[^\"]\"", &dim, &tag, nm) != 3)
+          MSH_FAIL("%s: line %zu: bad physical name", path, lineno);
+        name_tag[i] = dim == 1 ? tag : -1; /* only curves bound a 2-D domain */
+        size_t len = strlen(nm);
+        if (len >= GM_FLUID_NAME_SIZE)
+          MSH_FAIL("%s: line %zu: physical name longer than %d characters", path, lineno,
+                   GM_FLUID_NAME_SIZE - 1);
+        memcpy(names[i], nm, len + 1);
+      }
+    } else if (strncmp(line, "$Nodes", 6) == 0) {
+      if (!fgets(line, sizeof line, fp) || sscanf(line, "%zu", &n_nodes) != 1 ||
+          n_nodes > mesh->n_vertices + 10000000)
+        MSH_FAIL("%s: line %zu: bad node count", path, lineno + 1);
+      ++lineno;
+      nodes = calloc(n_nodes ? n_nodes : 1, sizeof *nodes);
+      if (!nodes) { st = GM_ENOMEM; snprintf(msg, sizeof msg, "out of memory"); goto done; }
+      for (size_t i = 0; i < n_nodes; ++i) {
+        ++lineno;
+        if (!fgets(line, sizeof line, fp) ||
+            sscanf(line, "%ld %lf %lf", &nodes[i].id, &nodes[i].x, &nodes[i].y) != 3)
+          MSH_FAIL("%s: line %zu: bad node", path, lineno);
+      }
+      qsort(nodes, n_nodes, sizeof *nodes, cmp_node);
+    } else if (strncmp(line, "$Elements", 9) == 0) {
+      size_t n_el = 0;
+      if (!fgets(line, sizeof line, fp) || sscanf(line, "%zu", &n_el) != 1)
+        MSH_FAIL("%s: line %zu: bad element count", path, lineno + 1);
+      ++lineno;
+      for (size_t i = 0; i < n_el; ++i) {
+        long id, type, ntags, tags[16], a, b;
+        int used = 0, k = 0;
+        ++lineno;
+        if (!fgets(line, sizeof line, fp) || sscanf(line, "%ld %ld %ld%n", &id, &type, &ntags, &used) != 3 ||
+            ntags < 0 || ntags > 16)
+          MSH_FAIL("%s: line %zu: bad element", path, lineno);
+        if (type != 1) continue;
+        const char *p = line + used;
+        for (long t = 0; t < ntags; ++t, p += k)
+          if (sscanf(p, "%ld%n", &tags[t], &k) != 1) MSH_FAIL("%s: line %zu: bad tags", path, lineno);
+        if (sscanf(p, "%ld %ld", &a, &b) != 2) MSH_FAIL("%s: line %zu: bad line element", path, lineno);
+        if (ntags < 1) continue;
+        if (n_lines == cap_lines) {
+          cap_lines = cap_lines ? 2 * cap_lines : 64;
+          void *nl = realloc(lines, cap_lines * sizeof *lines);
+          if (!nl) { st = GM_ENOMEM; snprintf(msg, sizeof msg, "out of memory"); goto done; }
+          lines = nl;
+        }
+        lines[n_lines][0] = a;
+        lines[n_lines][1] = b;
+        lines[n_lines++][2] = tags[0];
+      }
+    }
+  }
+  if (!version_ok) MSH_FAIL("%s: no $MeshFormat section", path);
+  /* groups: the named physical curves that have line elements */
+  keys = calloc(mesh->n_vertices ? mesh->n_vertices : 1, sizeof *keys);
+  if (!keys) { st = GM_ENOMEM; snprintf(msg, sizeof msg, "out of memory"); goto done; }
+  for (size_t v = 0; v < mesh->n_vertices; ++v) keys[v] = (vkey){mesh->x[2 * v], mesh->x[2 * v + 1], v};
+  qsort(keys, mesh->n_vertices, sizeof *keys, cmp_vkey);
+  size_t n_used = 0;
+  for (size_t i = 0; i < n_lines; ++i) {
+    size_t nm = 0;
+    while (nm < n_names && name_tag[nm] != lines[i][2]) ++nm;
+    if (nm < n_names) ++n_used;
+  }
+  st = groups_alloc(n_names, n_used, &g);
+  if (st) { snprintf(msg, sizeof msg, "out of memory"); goto done; }
+  for (size_t i = 0; i < n_names; ++i) memcpy(g->names[i], names[i], GM_FLUID_NAME_SIZE);
+  size_t k = 0;
+  for (size_t i = 0; i < n_lines; ++i) {
+    size_t nm = 0;
+    while (nm < n_names && name_tag[nm] != lines[i][2]) ++nm;
+    if (nm == n_names) continue;
+    for (int e = 0; e < 2; ++e) {
+      msh_node key = {lines[i][e], 0, 0};
+      msh_node *nd = bsearch(&key, nodes, n_nodes, sizeof *nodes, cmp_node);
+      if (!nd) MSH_FAIL("%s: line element of \"%s\" uses undefined node %ld", path, names[nm], key.id);
+      size_t v = find_vertex(keys, mesh->n_vertices, nd->x, nd->y);
+      if (v == SIZE_MAX)
+        MSH_FAIL("%s: node %ld of \"%s\" at (%g, %g) is no vertex of the mesh", path, key.id,
+                 names[nm], nd->x, nd->y);
+      g->vertices[2 * k + e] = v;
+    }
+    g->group[k++] = nm;
+  }
+#undef MSH_FAIL
+done:
+  fclose(fp);
+  free(names); free(name_tag); free(nodes); free(lines); free(keys);
+  if (st) {
+    gm_fluid_groups_free(g);
+    return gm_error_set(err, st, "%s", msg);
+  }
+  *out = g;
+  return GM_OK;
+}
