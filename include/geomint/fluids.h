@@ -210,6 +210,36 @@ typedef struct gm_fluid_run_report {
 gm_status gm_fluid_case_run(const gm_fluid_case *c, const char *out_dir, gm_fluid_run_report *rep,
                             gm_error *err);
 
+/* ---- seed 004 experiments ------------------------------------------------------------------- */
+
+typedef struct gm_fluid_channel_result {
+  size_t n_triangles, steps;
+  double mean_edge;
+  double profile_error;   /* mean |dψ/|e| − u_exact(midpoint)·n_e| over the edges with midpoint
+                             x in [L/4, 3L/4] (the flux per unit length against Poiseuille) */
+  double centroid_error;  /* mean |u_T − u_exact(centroid)| over the triangles there */
+  double theta_error;     /* max |θ − 20 y| over the vertices there (θ linear across) */
+  double div_max;         /* max over all steps of ‖δω‖∞ */
+} gm_fluid_channel_result;
+
+/* B14: the channel [0, 2π]×[0, 1], ν = κ = 1, parabolic inflow of centreline speed 1, outflow
+ * on the right, θ = 20 on the top wall, 0 on the bottom and the inlet; zero initial flow, dt =
+ * 1e-2 to t_end, acute rectangle mesh of nx cells along the channel (nx = 210: mean edge 2.99e-2,
+ * the seed's 2.989e-2). */
+gm_status gm_fluid_channel(size_t nx, double t_end, gm_fluid_channel_result *r, gm_error *err);
+
+typedef struct gm_fluid_shear_result {
+  double mean_edge, psi, theta, velocity, flux; /* errors (see docs/fluids.md for the norms) */
+  double div_max;
+} gm_fluid_shear_result;
+
+/* B15: Couette (poiseuille = 0) or Poiseuille flow on the unit square on an acute mesh of n
+ * cells across, started from the exact ψ and θ = y and run with dt to t_end (the steady state):
+ * errors of ψ and θ (⋆0-weighted), velocity per triangle (area-weighted), flux per unit length
+ * on the edges (|e||⋆e|-weighted). */
+gm_status gm_fluid_shear(int poiseuille, size_t n, double dt, double t_end,
+                         gm_fluid_shear_result *r, gm_error *err);
+
 #ifdef __cplusplus
 }
 #endif
