@@ -52,12 +52,19 @@ static inline double fl_poiseuille_psi(double y) { return 2.0 * y * y - 4.0 * y 
  * the bottom, 1 on the top, zero flux on the inflow and outflow. */
 static inline void fl_shear_bcs(int poiseuille, gm_fluid_bc bc[4]) {
   memset(bc, 0, 4 * sizeof *bc);
-  bc[0].group = "bottom"; bc[0].kind = GM_FLUID_WALL;
-  bc[0].scalar = GM_SCALAR_DIRICHLET; bc[0].scalar_value = 0.0;
-  bc[1].group = "right"; bc[1].kind = GM_FLUID_OUTFLOW;
-  bc[2].group = "top"; bc[2].kind = GM_FLUID_WALL; bc[2].velocity[0] = poiseuille ? 0.0 : 1.0;
-  bc[2].scalar = GM_SCALAR_DIRICHLET; bc[2].scalar_value = 1.0;
-  bc[3].group = "left"; bc[3].kind = GM_FLUID_INFLOW;
+  bc[0].group = "bottom";
+  bc[0].kind = GM_FLUID_WALL;
+  bc[0].scalar = GM_SCALAR_DIRICHLET;
+  bc[0].scalar_value = 0.0;
+  bc[1].group = "right";
+  bc[1].kind = GM_FLUID_OUTFLOW;
+  bc[2].group = "top";
+  bc[2].kind = GM_FLUID_WALL;
+  bc[2].velocity[0] = poiseuille ? 0.0 : 1.0;
+  bc[2].scalar = GM_SCALAR_DIRICHLET;
+  bc[2].scalar_value = 1.0;
+  bc[3].group = "left";
+  bc[3].kind = GM_FLUID_INFLOW;
   bc[3].profile = poiseuille ? fl_poiseuille_inflow : fl_couette_inflow;
 }
 

@@ -52,10 +52,10 @@ gm_status gm_fluid_groups_read_msh(const char *path, const gm_mesh *mesh, gm_flu
 /* ---- boundary conditions ------------------------------------------------------------------- */
 
 typedef enum {
-  GM_FLUID_WALL = 0,    /* no normal flow; tangential velocity = `velocity` (0: no-slip) */
-  GM_FLUID_INFLOW = 1,  /* prescribed velocity: the parabola of centreline speed `speed` across
-                           the group (a straight run of edges), or `profile` when set */
-  GM_FLUID_OUTFLOW = 2  /* ψ free, zero tangential velocity, zero diffusive flux of vorticity */
+  GM_FLUID_WALL = 0,   /* no normal flow; tangential velocity = `velocity` (0: no-slip) */
+  GM_FLUID_INFLOW = 1, /* prescribed velocity: the parabola of centreline speed `speed` across
+                          the group (a straight run of edges), or `profile` when set */
+  GM_FLUID_OUTFLOW = 2 /* ψ free, zero tangential velocity, zero diffusive flux of vorticity */
 } gm_fluid_bc_kind;
 
 typedef enum {
@@ -67,10 +67,10 @@ typedef enum {
 typedef int (*gm_fluid_velocity_fn)(void *ctx, const double *x, double *u);
 
 typedef struct gm_fluid_bc {
-  const char *group;           /* group name (copied) */
+  const char *group; /* group name (copied) */
   gm_fluid_bc_kind kind;
-  double velocity[2];          /* WALL: wall velocity (its tangential part is used) */
-  double speed;                /* INFLOW: centreline speed of the parabolic profile */
+  double velocity[2];           /* WALL: wall velocity (its tangential part is used) */
+  double speed;                 /* INFLOW: centreline speed of the parabolic profile */
   gm_fluid_velocity_fn profile; /* INFLOW: optional profile instead of the parabola */
   void *profile_ctx;
   gm_fluid_scalar_bc scalar;
@@ -90,13 +90,13 @@ typedef enum {
 } gm_fluid_scheme;
 
 typedef struct gm_fluid_options {
-  gm_fluid_scheme scheme; /* default GM_FLUID_SEED */
-  double nu;              /* kinematic viscosity >= 0 (default 1) */
-  double kappa;           /* scalar diffusivity >= 0 (default 1) */
-  double dt;              /* time step > 0 (default 1e-2) */
-  double velocity_scale;  /* speed used in the half step's Courant bound, in addition to the
-                             boundary speeds and the initial velocity (default 0) */
-  double midpoint_tol;    /* fixed-point tolerance of GM_FLUID_MIDPOINT, relative (1e-15) */
+  gm_fluid_scheme scheme;   /* default GM_FLUID_SEED */
+  double nu;                /* kinematic viscosity >= 0 (default 1) */
+  double kappa;             /* scalar diffusivity >= 0 (default 1) */
+  double dt;                /* time step > 0 (default 1e-2) */
+  double velocity_scale;    /* speed used in the half step's Courant bound, in addition to the
+                               boundary speeds and the initial velocity (default 0) */
+  double midpoint_tol;      /* fixed-point tolerance of GM_FLUID_MIDPOINT, relative (1e-15) */
   size_t midpoint_max_iter; /* default 200 */
 } gm_fluid_options;
 
@@ -116,8 +116,8 @@ typedef struct gm_fluid gm_fluid;
  * explicit half step (the bound is in the message and in gm_fluid_dt_bound); more than one
  * boundary loop or outflow run per loop (GM_EUNSUPPORTED); a net inflow with no outflow. */
 gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, size_t n_bcs,
-                          const gm_fluid_bc *bcs, const gm_fluid_options *options,
-                          gm_fluid **out, gm_error *err);
+                          const gm_fluid_bc *bcs, const gm_fluid_options *options, gm_fluid **out,
+                          gm_error *err);
 void gm_fluid_free(gm_fluid *f);
 const char *gm_fluid_errmsg(const gm_fluid *f);
 
@@ -138,8 +138,8 @@ size_t gm_fluid_steps(const gm_fluid *f);
 double gm_fluid_dt(const gm_fluid *f);
 /* Largest dt the explicit half step allows (+inf when every speed is zero). */
 double gm_fluid_dt_bound(const gm_fluid *f);
-const double *gm_fluid_psi(const gm_fluid *f);       /* per vertex */
-const double *gm_fluid_theta(const gm_fluid *f);     /* per vertex */
+const double *gm_fluid_psi(const gm_fluid *f);         /* per vertex */
+const double *gm_fluid_theta(const gm_fluid *f);       /* per vertex */
 const double *gm_fluid_circulation(const gm_fluid *f); /* Γ per vertex (dual cell) */
 /* ζ = Γ/|⋆v| per vertex (n_vertices values written). */
 void gm_fluid_vorticity(const gm_fluid *f, double *zeta);
@@ -151,11 +151,11 @@ void gm_fluid_flux(const gm_fluid *f, double *flux);
 
 typedef struct gm_fluid_diagnostics {
   double time;
-  double kinetic_energy;   /* ½ Σ_T |T| |u_T|² = ½ ψᵀ d0ᵀ⋆1 d0 ψ */
-  double enstrophy;        /* ½ Σ_v Γ_v² / |⋆v| */
-  double total_vorticity;  /* Σ_v Γ_v */
-  double div_max;          /* ‖δω‖∞: max over triangles of the net flux out, |d1 dψ| */
-  double scalar_mass;      /* Σ_v |⋆v| θ_v */
+  double kinetic_energy;      /* ½ Σ_T |T| |u_T|² = ½ ψᵀ d0ᵀ⋆1 d0 ψ */
+  double enstrophy;           /* ½ Σ_v Γ_v² / |⋆v| */
+  double total_vorticity;     /* Σ_v Γ_v */
+  double div_max;             /* ‖δω‖∞: max over triangles of the net flux out, |d1 dψ| */
+  double scalar_mass;         /* Σ_v |⋆v| θ_v */
   size_t midpoint_iterations; /* of the last step (GM_FLUID_MIDPOINT) */
 } gm_fluid_diagnostics;
 
@@ -164,9 +164,9 @@ void gm_fluid_diagnose(const gm_fluid *f, gm_fluid_diagnostics *d);
 /* ---- case files (JSON) --------------------------------------------------------------------- */
 
 typedef enum {
-  GM_FLUID_INIT_REST = 0,        /* ψ = boundary values, 0 inside; θ = Dirichlet values, 0 inside */
-  GM_FLUID_INIT_SHEAR_MODES = 1  /* ψ = A (sin πx̂ sin πŷ + ½ sin 2πx̂ sin πŷ) on the bounding box
-                                    (x̂, ŷ in [0,1]); θ = a Gaussian blob at (0.3, 0.6) */
+  GM_FLUID_INIT_REST = 0, /* ψ = boundary values, 0 inside; θ = Dirichlet values, 0 inside */
+  GM_FLUID_INIT_SHEAR_MODES = 1 /* ψ = A (sin πx̂ sin πŷ + ½ sin 2πx̂ sin πŷ) on the bounding box
+                                   (x̂, ŷ in [0,1]); θ = a Gaussian blob at (0.3, 0.6) */
 } gm_fluid_initial;
 
 /* A case file read into memory: mesh, groups, conditions, options, run length and outputs.
@@ -175,14 +175,14 @@ typedef struct gm_fluid_case {
   gm_mesh *mesh;
   gm_fluid_groups *groups;
   size_t n_bcs;
-  gm_fluid_bc *bcs;                     /* group names point into bc_names */
+  gm_fluid_bc *bcs; /* group names point into bc_names */
   char (*bc_names)[GM_FLUID_NAME_SIZE];
   gm_fluid_options options;
-  double rho;                           /* density (only scales the pressure; default 1) */
+  double rho; /* density (only scales the pressure; default 1) */
   double t_end;
   gm_fluid_initial initial;
-  double initial_amplitude;             /* default 0.1 */
-  size_t output_every;                  /* VTU every k steps (0: none); CSV every step */
+  double initial_amplitude; /* default 0.1 */
+  size_t output_every;      /* VTU every k steps (0: none); CSV every step */
 } gm_fluid_case;
 
 /* Read a case file (mesh paths relative to its directory). GM_EIO when it cannot be read,
@@ -198,7 +198,7 @@ gm_status gm_fluid_case_solver(const gm_fluid_case *c, gm_fluid **out, gm_error 
 typedef struct gm_fluid_run_report {
   size_t steps;
   size_t vtu_files;
-  double div_max;                /* max over all steps of ‖δω‖∞ */
+  double div_max; /* max over all steps of ‖δω‖∞ */
   gm_fluid_diagnostics first, last;
 } gm_fluid_run_report;
 
@@ -215,11 +215,11 @@ gm_status gm_fluid_case_run(const gm_fluid_case *c, const char *out_dir, gm_flui
 typedef struct gm_fluid_channel_result {
   size_t n_triangles, steps;
   double mean_edge;
-  double profile_error;   /* mean |dψ/|e| − u_exact(midpoint)·n_e| over the edges with midpoint
-                             x in [L/4, 3L/4] (the flux per unit length against Poiseuille) */
-  double centroid_error;  /* mean |u_T − u_exact(centroid)| over the triangles there */
-  double theta_error;     /* max |θ − 20 y| over the vertices there (θ linear across) */
-  double div_max;         /* max over all steps of ‖δω‖∞ */
+  double profile_error;  /* mean |dψ/|e| − u_exact(midpoint)·n_e| over the edges with midpoint
+                            x in [L/4, 3L/4] (the flux per unit length against Poiseuille) */
+  double centroid_error; /* mean |u_T − u_exact(centroid)| over the triangles there */
+  double theta_error;    /* max |θ − 20 y| over the vertices there (θ linear across) */
+  double div_max;        /* max over all steps of ‖δω‖∞ */
 } gm_fluid_channel_result;
 
 /* B14: the channel [0, 2π]×[0, 1], ν = κ = 1, parabolic inflow of centreline speed 1, outflow

@@ -27,7 +27,7 @@ static const char usage[] =
     "edge 2.99e-2, the seed's mesh size); prints the profile error against Poiseuille.\n"
     "rates: seed 004 B15, Couette or Poiseuille on the unit square at the meshes N (default\n"
     "12,20,48,72,96,120,144, mean edges close to the seed's seven), errors and rates of psi,\n"
-    "theta, velocity and flux.\n";
+    "theta, velocity and flux (dt = min(1e-2, 0.5/N), t = 1).\n";
 
 static double now(void) {
   struct timespec ts;
@@ -53,7 +53,10 @@ static int fluid_run(int argc, char **argv) {
   const char *pos[1];
   size_t n_pos = 0;
   int rc = cli_parse("fluid run", argc, argv, options, 2, pos, 1, &n_pos);
-  if (rc == CLI_HELP) { fputs(usage, stdout); return CLI_EXIT_OK; }
+  if (rc == CLI_HELP) {
+    fputs(usage, stdout);
+    return CLI_EXIT_OK;
+  }
   if (rc != CLI_EXIT_OK) return rc;
   if (n_pos != 1) {
     cli_error("fluid run", "expected one case file\n%s", usage);
@@ -101,9 +104,11 @@ static int fluid_run(int argc, char **argv) {
          rep.div_max, rep.vtu_files);
   printf("%-16s %22s %22s\n", "", "first", "last");
   printf("%-16s %22.15g %22.15g\n", "time", rep.first.time, rep.last.time);
-  printf("%-16s %22.15g %22.15g\n", "kinetic_energy", rep.first.kinetic_energy, rep.last.kinetic_energy);
+  printf("%-16s %22.15g %22.15g\n", "kinetic_energy", rep.first.kinetic_energy,
+         rep.last.kinetic_energy);
   printf("%-16s %22.15g %22.15g\n", "enstrophy", rep.first.enstrophy, rep.last.enstrophy);
-  printf("%-16s %22.15g %22.15g\n", "total_vorticity", rep.first.total_vorticity, rep.last.total_vorticity);
+  printf("%-16s %22.15g %22.15g\n", "total_vorticity", rep.first.total_vorticity,
+         rep.last.total_vorticity);
   printf("%-16s %22.15g %22.15g\n", "scalar_mass", rep.first.scalar_mass, rep.last.scalar_mass);
   return CLI_EXIT_OK;
 }
@@ -117,7 +122,10 @@ static int fluid_channel(int argc, char **argv) {
                           {"--json", CLI_ARG_FLAG, &json, 0}};
   size_t n_pos = 0;
   int rc = cli_parse("fluid channel", argc, argv, options, 3, NULL, 0, &n_pos);
-  if (rc == CLI_HELP) { fputs(usage, stdout); return CLI_EXIT_OK; }
+  if (rc == CLI_HELP) {
+    fputs(usage, stdout);
+    return CLI_EXIT_OK;
+  }
   if (rc != CLI_EXIT_OK) return rc;
   gm_fluid_channel_result r;
   gm_error err = {{0}};
@@ -154,7 +162,10 @@ static double fit_slope(size_t n, const double *h, const double *e) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (size_t i = 0; i < n; ++i) {
     double a = log(h[i]), b = log(e[i]);
-    sx += a; sy += b; sxx += a * a; sxy += a * b;
+    sx += a;
+    sy += b;
+    sxx += a * a;
+    sxy += a * b;
   }
   return ((double)n * sxy - sx * sy) / ((double)n * sxx - sx * sx);
 }
@@ -167,7 +178,10 @@ static int fluid_rates(int argc, char **argv) {
                           {"--json", CLI_ARG_FLAG, &json, 0}};
   size_t n_pos = 0;
   int rc = cli_parse("fluid rates", argc, argv, options, 3, NULL, 0, &n_pos);
-  if (rc == CLI_HELP) { fputs(usage, stdout); return CLI_EXIT_OK; }
+  if (rc == CLI_HELP) {
+    fputs(usage, stdout);
+    return CLI_EXIT_OK;
+  }
   if (rc != CLI_EXIT_OK) return rc;
   int pois = strcmp(flow, "poiseuille") == 0;
   if (!pois && strcmp(flow, "couette") != 0) {
@@ -193,13 +207,18 @@ static int fluid_rates(int argc, char **argv) {
   gm_error err = {{0}};
   for (size_t i = 0; i < n; ++i) {
     gm_fluid_shear_result r;
-    gm_status st = gm_fluid_shear(pois, cells[i], 0.01, 1.0, &r, &err);
+    /* dt = min(1e-2, 0.5/N): below the half step's bound 1/N (h_min = 1/(2N) on the sides) */
+    double dt = fmin(1e-2, 0.5 / (double)cells[i]);
+    gm_status st = gm_fluid_shear(pois, cells[i], dt, 1.0, &r, &err);
     if (st) {
       cli_error("fluid rates", "%s", err.message);
       return CLI_EXIT_FAILURE;
     }
     h[i] = r.mean_edge;
-    e[0][i] = r.psi; e[1][i] = r.theta; e[2][i] = r.velocity; e[3][i] = r.flux;
+    e[0][i] = r.psi;
+    e[1][i] = r.theta;
+    e[2][i] = r.velocity;
+    e[3][i] = r.flux;
     div = fmax(div, r.div_max);
   }
   static const char *names[4] = {"psi", "theta", "velocity", "flux"};
@@ -217,11 +236,13 @@ static int fluid_rates(int argc, char **argv) {
     cJSON_AddItemToObject(root, "div_max", cli_json_number(div));
     return cli_json_print(root);
   }
-  printf("%s: errors at steady state (t = 1, dt = 1e-2, nu = kappa = 1)\n", pois ? "Poiseuille" : "Couette");
-  printf("%6s %11s %11s %11s %11s %11s\n", "cells", "mean edge", "psi", "theta", "velocity", "flux");
+  printf("%s: errors at steady state (t = 1, dt = min(1e-2, 0.5/N), nu = kappa = 1)\n",
+         pois ? "Poiseuille" : "Couette");
+  printf("%6s %11s %11s %11s %11s %11s\n", "cells", "mean edge", "psi", "theta", "velocity",
+         "flux");
   for (size_t i = 0; i < n; ++i)
-    printf("%6zu %11.4e %11.4e %11.4e %11.4e %11.4e\n", cells[i], h[i], e[0][i], e[1][i],
-           e[2][i], e[3][i]);
+    printf("%6zu %11.4e %11.4e %11.4e %11.4e %11.4e\n", cells[i], h[i], e[0][i], e[1][i], e[2][i],
+           e[3][i]);
   printf("%6s %11s %11.2f %11.2f %11.2f %11.2f\n", "rate", "", fit_slope(n, h, e[0]),
          fit_slope(n, h, e[1]), fit_slope(n, h, e[2]), fit_slope(n, h, e[3]));
   printf("max |delta omega| over all steps and meshes %.3e\n", div);

@@ -29,7 +29,8 @@ typedef struct parser {
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif
-static gm_status bad(parser *p, const char *json_path, const char *fmt, ...) {
+static gm_status
+bad(parser *p, const char *json_path, const char *fmt, ...) {
   char what[GM_ERRMSG_SIZE];
   va_list ap;
   va_start(ap, fmt);
@@ -54,7 +55,8 @@ static gm_status get_pair(parser *p, const cJSON *obj, const char *key, const ch
                           double v[2]) {
   const cJSON *it = cJSON_GetObjectItemCaseSensitive(obj, key);
   if (!it) return GM_OK;
-  if (!cJSON_IsArray(it) || cJSON_GetArraySize(it) != 2) return bad(p, json_path, "expected [a, b]");
+  if (!cJSON_IsArray(it) || cJSON_GetArraySize(it) != 2)
+    return bad(p, json_path, "expected [a, b]");
   for (int k = 0; k < 2; ++k) {
     const cJSON *e = cJSON_GetArrayItem(it, k);
     if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble))
@@ -64,9 +66,9 @@ static gm_status get_pair(parser *p, const cJSON *obj, const char *key, const ch
   return GM_OK;
 }
 
-static const char *known_keys[] = {"mesh", "boundaries", "nu", "kappa", "rho", "dt", "t_end",
-                                   "scheme", "initial", "amplitude", "output_every", "velocity_scale",
-                                   "comment", NULL};
+static const char *known_keys[] = {
+    "mesh",    "boundaries", "nu",           "kappa",          "rho",     "dt", "t_end", "scheme",
+    "initial", "amplitude",  "output_every", "velocity_scale", "comment", NULL};
 
 static gm_status parse_mesh(parser *p, const cJSON *m, const char *base_dir, gm_fluid_case *c,
                             gm_error *err) {
@@ -168,12 +170,18 @@ static gm_status case_parse(const char *text, const char *base_dir, const char *
   }
   gm_fluid_case *c = calloc(1, sizeof *c);
   gm_status st = GM_OK;
-  if (!c) { cJSON_Delete(root); return gm_error_set(err, GM_ENOMEM, "fluid case: out of memory"); }
+  if (!c) {
+    cJSON_Delete(root);
+    return gm_error_set(err, GM_ENOMEM, "fluid case: out of memory");
+  }
   c->options = gm_fluid_defaults();
   c->rho = 1.0;
   c->t_end = 1.0;
   c->initial_amplitude = 0.1;
-  if (!cJSON_IsObject(root)) { st = bad(&p, "$", "expected an object"); goto done; }
+  if (!cJSON_IsObject(root)) {
+    st = bad(&p, "$", "expected an object");
+    goto done;
+  }
   for (const cJSON *it = root->child; it; it = it->next) {
     size_t k = 0;
     while (known_keys[k] && strcmp(known_keys[k], it->string) != 0) ++k;
@@ -185,7 +193,10 @@ static gm_status case_parse(const char *text, const char *base_dir, const char *
     }
   }
   const cJSON *m = cJSON_GetObjectItemCaseSensitive(root, "mesh");
-  if (!m) { st = bad(&p, "$.mesh", "missing"); goto done; }
+  if (!m) {
+    st = bad(&p, "$.mesh", "missing");
+    goto done;
+  }
   gm_error sub = {{0}};
   st = parse_mesh(&p, m, base_dir, c, &sub);
   if (st) {
@@ -193,7 +204,10 @@ static gm_status case_parse(const char *text, const char *base_dir, const char *
     goto done;
   }
   const cJSON *b = cJSON_GetObjectItemCaseSensitive(root, "boundaries");
-  if (!b) { st = bad(&p, "$.boundaries", "missing"); goto done; }
+  if (!b) {
+    st = bad(&p, "$.boundaries", "missing");
+    goto done;
+  }
   if ((st = parse_boundaries(&p, b, c))) goto done;
   double every = 0;
   if ((st = get_number(&p, root, "nu", "$.nu", &c->options.nu)) ||
@@ -201,14 +215,27 @@ static gm_status case_parse(const char *text, const char *base_dir, const char *
       (st = get_number(&p, root, "rho", "$.rho", &c->rho)) ||
       (st = get_number(&p, root, "dt", "$.dt", &c->options.dt)) ||
       (st = get_number(&p, root, "t_end", "$.t_end", &c->t_end)) ||
-      (st = get_number(&p, root, "velocity_scale", "$.velocity_scale", &c->options.velocity_scale)) ||
+      (st = get_number(&p, root, "velocity_scale", "$.velocity_scale",
+                       &c->options.velocity_scale)) ||
       (st = get_number(&p, root, "amplitude", "$.amplitude", &c->initial_amplitude)) ||
       (st = get_number(&p, root, "output_every", "$.output_every", &every)))
     goto done;
-  if (c->options.nu < 0) { st = bad(&p, "$.nu", "viscosity %g < 0", c->options.nu); goto done; }
-  if (c->options.kappa < 0) { st = bad(&p, "$.kappa", "diffusivity %g < 0", c->options.kappa); goto done; }
-  if (!(c->rho > 0)) { st = bad(&p, "$.rho", "density %g <= 0", c->rho); goto done; }
-  if (!(c->options.dt > 0)) { st = bad(&p, "$.dt", "time step %g <= 0", c->options.dt); goto done; }
+  if (c->options.nu < 0) {
+    st = bad(&p, "$.nu", "viscosity %g < 0", c->options.nu);
+    goto done;
+  }
+  if (c->options.kappa < 0) {
+    st = bad(&p, "$.kappa", "diffusivity %g < 0", c->options.kappa);
+    goto done;
+  }
+  if (!(c->rho > 0)) {
+    st = bad(&p, "$.rho", "density %g <= 0", c->rho);
+    goto done;
+  }
+  if (!(c->options.dt > 0)) {
+    st = bad(&p, "$.dt", "time step %g <= 0", c->options.dt);
+    goto done;
+  }
   if (!(c->t_end >= 0) || c->t_end / c->options.dt > 1e12) {
     st = bad(&p, "$.t_end", "t_end = %g must be >= 0 and at most 1e12 steps", c->t_end);
     goto done;
@@ -224,7 +251,10 @@ static gm_status case_parse(const char *text, const char *base_dir, const char *
       c->options.scheme = GM_FLUID_SEED;
     else if (cJSON_IsString(s) && strcmp(s->valuestring, "midpoint") == 0)
       c->options.scheme = GM_FLUID_MIDPOINT;
-    else { st = bad(&p, "$.scheme", "expected \"seed\" or \"midpoint\""); goto done; }
+    else {
+      st = bad(&p, "$.scheme", "expected \"seed\" or \"midpoint\"");
+      goto done;
+    }
   }
   const cJSON *in = cJSON_GetObjectItemCaseSensitive(root, "initial");
   if (in) {
@@ -232,7 +262,10 @@ static gm_status case_parse(const char *text, const char *base_dir, const char *
       c->initial = GM_FLUID_INIT_REST;
     else if (cJSON_IsString(in) && strcmp(in->valuestring, "shear_modes") == 0)
       c->initial = GM_FLUID_INIT_SHEAR_MODES;
-    else { st = bad(&p, "$.initial", "expected \"rest\" or \"shear_modes\""); goto done; }
+    else {
+      st = bad(&p, "$.initial", "expected \"rest\" or \"shear_modes\"");
+      goto done;
+    }
   }
 done:
   cJSON_Delete(root);
@@ -257,15 +290,24 @@ gm_status gm_fluid_case_read(const char *path, gm_fluid_case **out, gm_error *er
   if (!f) return gm_error_set(err, GM_EIO, "%s: cannot open: %s", path, strerror(errno));
   const size_t cap = (size_t)1 << 24; /* 16 MiB: a case file is a few lines */
   char *text = malloc(cap + 1);
-  if (!text) { fclose(f); return gm_error_set(err, GM_ENOMEM, "fluid case: out of memory"); }
+  if (!text) {
+    fclose(f);
+    return gm_error_set(err, GM_ENOMEM, "fluid case: out of memory");
+  }
   size_t n = fread(text, 1, cap + 1, f);
   fclose(f);
-  if (n > cap) { free(text); return gm_error_set(err, GM_EIO, "%s: larger than 16 MiB", path); }
+  if (n > cap) {
+    free(text);
+    return gm_error_set(err, GM_EIO, "%s: larger than 16 MiB", path);
+  }
   text[n] = 0;
   char dir[4096];
   snprintf(dir, sizeof dir, "%s", path);
   char *slash = strrchr(dir, '/');
-  if (slash) *slash = 0; else snprintf(dir, sizeof dir, ".");
+  if (slash)
+    *slash = 0;
+  else
+    snprintf(dir, sizeof dir, ".");
   gm_status st = case_parse(text, dir, path, out, err);
   free(text);
   return st;
@@ -280,9 +322,16 @@ gm_status gm_fluid_case_solver(const gm_fluid_case *c, gm_fluid **out, gm_error 
   const double *x = gm_complex_coordinates(gm_fluid_complex(f));
   double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
   for (size_t v = 0; v < nv; ++v)
-    for (int k = 0; k < 2; ++k) { lo[k] = fmin(lo[k], x[2 * v + k]); hi[k] = fmax(hi[k], x[2 * v + k]); }
+    for (int k = 0; k < 2; ++k) {
+      lo[k] = fmin(lo[k], x[2 * v + k]);
+      hi[k] = fmax(hi[k], x[2 * v + k]);
+    }
   double *psi = malloc(2 * nv * sizeof *psi);
-  if (!psi) { gm_fluid_free(f); *out = NULL; return gm_error_set(err, GM_ENOMEM, "out of memory"); }
+  if (!psi) {
+    gm_fluid_free(f);
+    *out = NULL;
+    return gm_error_set(err, GM_ENOMEM, "out of memory");
+  }
   double *theta = psi + nv, A = c->initial_amplitude;
   for (size_t v = 0; v < nv; ++v) {
     double X = (x[2 * v] - lo[0]) / (hi[0] - lo[0]), Y = (x[2 * v + 1] - lo[1]) / (hi[1] - lo[1]);

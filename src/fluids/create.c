@@ -27,18 +27,44 @@ void gm_fluid_free(gm_fluid *f) {
   if (!f) return;
   gm_geometry_free(f->geo);
   gm_complex_free(f->cx);
-  free(f->star0); free(f->star1); free(f->area); free(f->grad);
-  gm_csr_free(f->L); gm_csr_free(f->S);
-  free(f->b_tail); free(f->b_head); free(f->b_circ);
-  free(f->free_of); free(f->free_list); free(f->psi_fixed); free(f->psi_bc);
-  gm_sparse_cholesky_free(f->m_half); gm_sparse_cholesky_free(f->m_full);
-  gm_sparse_cholesky_free(f->poisson); gm_sparse_cholesky_free(f->m_theta);
-  free(f->c_half); free(f->c_full);
-  free(f->wfree_of); free(f->wfree_list); free(f->theta_fixed); free(f->theta_bc);
+  free(f->star0);
+  free(f->star1);
+  free(f->area);
+  free(f->grad);
+  gm_csr_free(f->L);
+  gm_csr_free(f->S);
+  free(f->b_tail);
+  free(f->b_head);
+  free(f->b_circ);
+  free(f->free_of);
+  free(f->free_list);
+  free(f->psi_fixed);
+  free(f->psi_bc);
+  gm_sparse_cholesky_free(f->m_half);
+  gm_sparse_cholesky_free(f->m_full);
+  gm_sparse_cholesky_free(f->poisson);
+  gm_sparse_cholesky_free(f->m_theta);
+  free(f->c_half);
+  free(f->c_full);
+  free(f->wfree_of);
+  free(f->wfree_list);
+  free(f->theta_fixed);
+  free(f->theta_bc);
   free(f->c_theta);
-  free(f->psi); free(f->theta); free(f->gamma); free(f->zeta);
-  free(f->psi_h); free(f->gamma_h); free(f->zeta_h); free(f->gamma_k); free(f->psi_k);
-  free(f->u_edge); free(f->out); free(f->rhs); free(f->rhs_w); free(f->sol);
+  free(f->psi);
+  free(f->theta);
+  free(f->gamma);
+  free(f->zeta);
+  free(f->psi_h);
+  free(f->gamma_h);
+  free(f->zeta_h);
+  free(f->gamma_k);
+  free(f->psi_k);
+  free(f->u_edge);
+  free(f->out);
+  free(f->rhs);
+  free(f->rhs_w);
+  free(f->sol);
   free(f);
 }
 
@@ -46,8 +72,8 @@ const char *gm_fluid_errmsg(const gm_fluid *f) { return f ? f->errmsg : ""; }
 
 /* The rows and columns of a listed in `list` (n of them; index_of maps a vertex to its
  * position in list or SIZE_MAX). */
-static gm_status csr_restrict(const gm_csr *a, size_t n, const size_t *list,
-                              const size_t *index_of, gm_csr **out) {
+static gm_status csr_restrict(const gm_csr *a, size_t n, const size_t *list, const size_t *index_of,
+                              gm_csr **out) {
   size_t nnz = 0;
   for (size_t r = 0; r < n; ++r)
     for (size_t k = a->row_start[list[r]]; k < a->row_start[list[r] + 1]; ++k)
@@ -116,15 +142,19 @@ static gm_status fail(gm_error *err, gm_fluid *f, gm_status st, const char *msg)
       goto done;                                                           \
     }                                                                      \
   } while (0)
-#define ALLOC(ptr, n)                                                      \
-  do {                                                                     \
-    (ptr) = calloc((n) > 0 ? (n) : 1, sizeof *(ptr));                          \
-    if (!(ptr)) { st = GM_ENOMEM; snprintf(msg, sizeof msg, "out of memory"); goto done; } \
+#define ALLOC(ptr, n)                                 \
+  do {                                                \
+    (ptr) = calloc((n) > 0 ? (n) : 1, sizeof *(ptr)); \
+    if (!(ptr)) {                                     \
+      st = GM_ENOMEM;                                 \
+      snprintf(msg, sizeof msg, "out of memory");     \
+      goto done;                                      \
+    }                                                 \
   } while (0)
 
 gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, size_t n_bcs,
-                          const gm_fluid_bc *bcs, const gm_fluid_options *options,
-                          gm_fluid **out, gm_error *err) {
+                          const gm_fluid_bc *bcs, const gm_fluid_options *options, gm_fluid **out,
+                          gm_error *err) {
   char msg[2 * GM_ERRMSG_SIZE] = "";
   gm_status st = GM_OK;
   if (!out) return gm_error_set(err, GM_EINVAL, "fluid: out is NULL");
@@ -148,11 +178,13 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
     return gm_error_set(err, GM_EINVAL,
                         "fluid: the midpoint scheme is inviscid: nu must be 0 (got %g)", opt.nu);
   if (!(opt.midpoint_tol > 0.0) || opt.midpoint_max_iter == 0)
-    return gm_error_set(err, GM_EINVAL, "fluid: midpoint_tol must be > 0 and midpoint_max_iter >= 1");
+    return gm_error_set(err, GM_EINVAL,
+                        "fluid: midpoint_tol must be > 0 and midpoint_max_iter >= 1");
   if (mesh->dim != 2 || mesh->N != 2)
-    return gm_error_set(err, GM_EUNSUPPORTED,
-                        "fluid: needs a flat triangle mesh (dim 2 in the plane), got dim %zu in R^%zu",
-                        mesh->dim, mesh->N);
+    return gm_error_set(
+        err, GM_EUNSUPPORTED,
+        "fluid: needs a flat triangle mesh (dim 2 in the plane), got dim %zu in R^%zu", mesh->dim,
+        mesh->N);
   for (size_t i = 0; i < n_bcs; ++i) {
     const gm_fluid_bc *b = &bcs[i];
     if (!b->group) return gm_error_set(err, GM_EINVAL, "fluid: bcs[%zu].group is NULL", i);
@@ -166,7 +198,8 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
         (b->kind != GM_FLUID_WALL || b->velocity[0] != 0.0 || b->velocity[1] != 0.0))
       return gm_error_set(err, GM_EUNSUPPORTED,
                           "fluid: the midpoint scheme needs a closed box of walls at rest; group "
-                          "\"%s\" is not one", b->group);
+                          "\"%s\" is not one",
+                          b->group);
   }
   /* every condition names a group of the mesh */
   size_t *bc_of_group = calloc(groups->n_groups ? groups->n_groups : 1, sizeof *bc_of_group);
@@ -185,17 +218,26 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
   }
 
   gm_fluid *f = calloc(1, sizeof *f);
-  if (!f) { free(bc_of_group); return gm_error_set(err, GM_ENOMEM, "fluid: out of memory"); }
+  if (!f) {
+    free(bc_of_group);
+    return gm_error_set(err, GM_ENOMEM, "fluid: out of memory");
+  }
   f->opt = opt;
   gm_csr *LD = NULL, *LDL = NULL, *M = NULL, *Mr = NULL, *T = NULL;
   size_t *edge_bc = NULL, *next = NULL, *next_edge = NULL;
   double *lookup = NULL;
   gm_error sub;
   st = gm_mesh_complex(mesh, &f->cx, &sub);
-  if (st) { snprintf(msg, sizeof msg, "fluid: %s", sub.message); goto done; }
+  if (st) {
+    snprintf(msg, sizeof msg, "fluid: %s", sub.message);
+    goto done;
+  }
   gm_geometry_options gopt = gm_geometry_defaults();
   st = gm_geometry_create(f->cx, &gopt, &f->geo, &sub);
-  if (st) { snprintf(msg, sizeof msg, "fluid: %s", sub.message); goto done; }
+  if (st) {
+    snprintf(msg, sizeof msg, "fluid: %s", sub.message);
+    goto done;
+  }
   f->nv = gm_complex_count(f->cx, 0);
   f->ne = gm_complex_count(f->cx, 1);
   f->nt = gm_complex_count(f->cx, 2);
@@ -205,7 +247,8 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
 
   /* The diagonal star (seed 004 eq. 146) needs positive ⋆0, ⋆1: refuse with counts. */
   {
-    size_t neg0 = gm_geometry_negative_duals(f->geo, 0), neg1 = gm_geometry_negative_duals(f->geo, 1);
+    size_t neg0 = gm_geometry_negative_duals(f->geo, 0),
+           neg1 = gm_geometry_negative_duals(f->geo, 1);
     if (neg0 || neg1) {
       size_t bad_tri = 0;
       for (size_t t = 0; t < f->nt; ++t) {
@@ -215,15 +258,19 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
           ++bad_tri;
       }
       st = GM_EINVAL;
-      snprintf(msg, sizeof msg,
-               "fluid: mesh not well-centred for the diagonal Hodge star: %zu of %zu edges have "
-               "star1 <= 0, %zu of %zu vertices star0 <= 0, %zu of %zu triangles do not contain "
-               "their circumcentre (remesh acute, or use the Whitney star gm_geometry_whitney_mass)",
-               neg1, f->ne, neg0, f->nv, bad_tri, f->nt);
+      snprintf(
+          msg, sizeof msg,
+          "fluid: mesh not well-centred for the diagonal Hodge star: %zu of %zu edges have "
+          "star1 <= 0, %zu of %zu vertices star0 <= 0, %zu of %zu triangles do not contain "
+          "their circumcentre (remesh acute, or use the Whitney star gm_geometry_whitney_mass)",
+          neg1, f->ne, neg0, f->nv, bad_tri, f->nt);
       goto done;
     }
   }
-  ALLOC(f->star0, f->nv); ALLOC(f->star1, f->ne); ALLOC(f->area, f->nt); ALLOC(f->grad, 6 * f->nt);
+  ALLOC(f->star0, f->nv);
+  ALLOC(f->star1, f->ne);
+  ALLOC(f->area, f->nt);
+  ALLOC(f->grad, 6 * f->nt);
   memcpy(f->star0, gm_geometry_hodge_star(f->geo, 0), f->nv * sizeof(double));
   memcpy(f->star1, gm_geometry_hodge_star(f->geo, 1), f->ne * sizeof(double));
   f->h_min = INFINITY;
@@ -235,7 +282,8 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
   for (size_t t = 0; t < f->nt; ++t) {
     const double *p[3] = {f->x + 2 * f->tri[3 * t], f->x + 2 * f->tri[3 * t + 1],
                           f->x + 2 * f->tri[3 * t + 2]};
-    double a2 = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
+    double a2 =
+        (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
     f->area[t] = 0.5 * fabs(a2);
     for (int k = 0; k < 3; ++k) {
       const double *q1 = p[(k + 1) % 3], *q2 = p[(k + 2) % 3];
@@ -251,8 +299,13 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
     st = gm_csr_multiply(S1, d0, &tmp);
     if (!st) st = gm_csr_transpose(d0, &d0t);
     if (!st) st = gm_csr_multiply(d0t, tmp, &f->L);
-    gm_csr_free(S1); gm_csr_free(tmp); gm_csr_free(d0t);
-    if (st) { snprintf(msg, sizeof msg, "fluid: assembling the Laplacian failed"); goto done; }
+    gm_csr_free(S1);
+    gm_csr_free(tmp);
+    gm_csr_free(d0t);
+    if (st) {
+      snprintf(msg, sizeof msg, "fluid: assembling the Laplacian failed");
+      goto done;
+    }
   }
   /* U = Sψ: tangential velocity ∫_e u·t along each edge, u_T = rot∇ψ_T averaged over the
    * cofaces with the weights |⋆e ∩ T|/|⋆e| of the DPP flat (Hirani 2003 §5.5; gm_dec_flat). */
@@ -260,9 +313,17 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
     size_t n3 = 9 * f->nt;
     size_t *ri = NULL, *ci = NULL;
     double *vv = NULL;
-    ALLOC(ri, n3); 
-    ci = calloc(n3, sizeof *ci); vv = calloc(n3, sizeof *vv);
-    if (!ci || !vv) { free(ri); free(ci); free(vv); st = GM_ENOMEM; snprintf(msg, sizeof msg, "out of memory"); goto done; }
+    ALLOC(ri, n3);
+    ci = calloc(n3, sizeof *ci);
+    vv = calloc(n3, sizeof *vv);
+    if (!ci || !vv) {
+      free(ri);
+      free(ci);
+      free(vv);
+      st = GM_ENOMEM;
+      snprintf(msg, sizeof msg, "out of memory");
+      goto done;
+    }
     size_t p = 0;
     const double *dual1 = gm_geometry_dual_volumes(f->geo, 1);
     for (size_t t = 0; t < f->nt; ++t) {
@@ -277,14 +338,20 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
         double w = pieces[j] / dual1[e];
         for (int k = 0; k < 3; ++k) {
           double gx = f->grad[6 * t + 2 * k], gy = f->grad[6 * t + 2 * k + 1];
-          ri[p] = e; ci[p] = f->tri[3 * t + k];
+          ri[p] = e;
+          ci[p] = f->tri[3 * t + k];
           vv[p++] = w * (gy * ex - gx * ey); /* (∂yλ, −∂xλ)·e⃗ */
         }
       }
     }
     st = gm_csr_from_triplets(f->ne, f->nv, p, ri, ci, vv, &f->S, &sub);
-    free(ri); free(ci); free(vv);
-    if (st) { snprintf(msg, sizeof msg, "fluid: %s", sub.message); goto done; }
+    free(ri);
+    free(ci);
+    free(vv);
+    if (st) {
+      snprintf(msg, sizeof msg, "fluid: %s", sub.message);
+      goto done;
+    }
   }
 
   /* ---- boundary: each boundary edge in a group with a condition, oriented ccw ---- */
@@ -294,7 +361,8 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
   for (size_t e = 0; e < f->ne; ++e) edge_bc[e] = SIZE_MAX;
   for (size_t i = 0; i < groups->n_edges; ++i) {
     size_t v[2] = {groups->vertices[2 * i], groups->vertices[2 * i + 1]};
-    if (v[0] >= mesh->n_vertices || v[1] >= mesh->n_vertices || groups->group[i] >= groups->n_groups) {
+    if (v[0] >= mesh->n_vertices || v[1] >= mesh->n_vertices ||
+        groups->group[i] >= groups->n_groups) {
       st = GM_EINVAL;
       snprintf(msg, sizeof msg, "fluid: group edge %zu has an index out of range", i);
       goto done;
@@ -315,8 +383,10 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
     }
   }
   f->nb = gm_complex_boundary_count(f->cx, 1);
-  ALLOC(f->b_tail, f->nb); ALLOC(f->b_head, f->nb);
-  ALLOC(next, f->nv); ALLOC(next_edge, f->nv);
+  ALLOC(f->b_tail, f->nb);
+  ALLOC(f->b_head, f->nb);
+  ALLOC(next, f->nv);
+  ALLOC(next_edge, f->nv);
   for (size_t v = 0; v < f->nv; ++v) next[v] = next_edge[v] = SIZE_MAX;
   {
     size_t k = 0;
@@ -336,8 +406,10 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
       const double *xi = f->x + 2 * i, *xj = f->x + 2 * j, *xc = f->x + 2 * c;
       double cr = (xj[0] - xi[0]) * (xc[1] - xi[1]) - (xj[1] - xi[1]) * (xc[0] - xi[0]);
       size_t a = cr > 0 ? i : j, b = cr > 0 ? j : i;
-      f->b_tail[k] = a; f->b_head[k] = b;
-      next[a] = b; next_edge[a] = e;
+      f->b_tail[k] = a;
+      f->b_head[k] = b;
+      next[a] = b;
+      next_edge[a] = e;
       ++k;
     }
   }
@@ -348,7 +420,10 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
     int here_out = bcs[edge_bc[next_edge[a]]].kind == GM_FLUID_OUTFLOW;
     size_t b = f->b_head[k];
     int next_out = bcs[edge_bc[next_edge[b]]].kind == GM_FLUID_OUTFLOW;
-    if (here_out && !next_out) { ++n_out_runs; start = b; }
+    if (here_out && !next_out) {
+      ++n_out_runs;
+      start = b;
+    }
   }
   if (start == SIZE_MAX) {
     if (bcs[edge_bc[next_edge[f->b_tail[0]]]].kind == GM_FLUID_OUTFLOW) {
@@ -374,7 +449,8 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
   if (n_out_runs > 1) {
     st = GM_EUNSUPPORTED;
     snprintf(msg, sizeof msg,
-             "fluid: %zu separate outflow runs on the boundary: at most one is supported", n_out_runs);
+             "fluid: %zu separate outflow runs on the boundary: at most one is supported",
+             n_out_runs);
     goto done;
   }
   /* run lengths of inflow groups (for the parabola) */
@@ -387,11 +463,19 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
   /* Walk the loop ccw from `start`: ψ increases by ∫ u·n_out ds along the boundary (u = rot∇ψ,
    * so ∂ψ/∂s = u·n_out, exact by Simpson for the parabola); b_v collects ∫ u_t ds over the two
    * boundary halves of ∂⋆v, the part of the circulation Γ_v that L ψ does not see. */
-  ALLOC(f->psi_fixed, f->nv); ALLOC(f->psi_bc, f->nv); ALLOC(f->b_circ, f->nv);
-  ALLOC(f->theta_fixed, f->nv); ALLOC(f->theta_bc, f->nv);
+  ALLOC(f->psi_fixed, f->nv);
+  ALLOC(f->psi_bc, f->nv);
+  ALLOC(f->b_circ, f->nv);
+  ALLOC(f->theta_fixed, f->nv);
+  ALLOC(f->theta_bc, f->nv);
   {
     double psi = 0.0, *s_run = calloc(n_bcs ? n_bcs : 1, sizeof *s_run);
-    if (!s_run) { free(run_len); st = GM_ENOMEM; snprintf(msg, sizeof msg, "out of memory"); goto done; }
+    if (!s_run) {
+      free(run_len);
+      st = GM_ENOMEM;
+      snprintf(msg, sizeof msg, "out of memory");
+      goto done;
+    }
     double u_max = 0.0;
     size_t v = start;
     for (size_t k = 0; k < f->nb; ++k) {
@@ -404,7 +488,8 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
         for (int q = 0; q < 3; ++q) { /* endpoints and midpoint (Simpson); quarter points for u_t */
           double a = 0.5 * q, p[2] = {xa[0] + a * (xb[0] - xa[0]), xa[1] + a * (xb[1] - xa[1])};
           if (bc_velocity(bc, p, s0 + a * len, run_len[ib], tt, &un[q], &ut[q])) {
-            free(s_run); free(run_len);
+            free(s_run);
+            free(run_len);
             st = GM_ECALLBACK;
             snprintf(msg, sizeof msg, "fluid: the inflow profile of \"%s\" failed", bc->group);
             goto done;
@@ -451,34 +536,58 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
     st = GM_EINVAL;
     snprintf(msg, sizeof msg,
              "fluid: dt = %g is above the bound %.6g of the explicit half step (2 h_min/|u|max, "
-             "h_min = %.6g)", opt.dt, f->dt_bound, f->h_min);
+             "h_min = %.6g)",
+             opt.dt, f->dt_bound, f->h_min);
     goto done;
   }
   /* free vertices for ψ and θ */
-  ALLOC(f->free_of, f->nv); ALLOC(f->free_list, f->nv);
-  ALLOC(f->wfree_of, f->nv); ALLOC(f->wfree_list, f->nv);
+  ALLOC(f->free_of, f->nv);
+  ALLOC(f->free_list, f->nv);
+  ALLOC(f->wfree_of, f->nv);
+  ALLOC(f->wfree_list, f->nv);
   for (size_t v = 0; v < f->nv; ++v) {
     f->free_of[v] = f->wfree_of[v] = SIZE_MAX;
-    if (!f->psi_fixed[v]) { f->free_of[v] = f->n_free; f->free_list[f->n_free++] = v; }
-    if (!f->theta_fixed[v]) { f->wfree_of[v] = f->n_wfree; f->wfree_list[f->n_wfree++] = v; }
+    if (!f->psi_fixed[v]) {
+      f->free_of[v] = f->n_free;
+      f->free_list[f->n_free++] = v;
+    }
+    if (!f->theta_fixed[v]) {
+      f->wfree_of[v] = f->n_wfree;
+      f->wfree_list[f->n_wfree++] = v;
+    }
   }
   if (f->n_free == 0) {
     st = GM_EINVAL;
     snprintf(msg, sizeof msg, "fluid: the mesh has no interior vertex");
     goto done;
   }
-  ALLOC(f->c_half, f->n_free); ALLOC(f->c_full, f->n_free); ALLOC(f->c_theta, f->n_wfree);
-  ALLOC(f->psi, f->nv); ALLOC(f->theta, f->nv); ALLOC(f->gamma, f->nv); ALLOC(f->zeta, f->nv);
-  ALLOC(f->psi_h, f->nv); ALLOC(f->gamma_h, f->nv); ALLOC(f->zeta_h, f->nv);
-  ALLOC(f->gamma_k, f->nv); ALLOC(f->psi_k, f->nv);
-  ALLOC(f->u_edge, f->ne); ALLOC(f->out, f->nv); ALLOC(f->rhs, f->nv); ALLOC(f->rhs_w, f->nv);
+  ALLOC(f->c_half, f->n_free);
+  ALLOC(f->c_full, f->n_free);
+  ALLOC(f->c_theta, f->n_wfree);
+  ALLOC(f->psi, f->nv);
+  ALLOC(f->theta, f->nv);
+  ALLOC(f->gamma, f->nv);
+  ALLOC(f->zeta, f->nv);
+  ALLOC(f->psi_h, f->nv);
+  ALLOC(f->gamma_h, f->nv);
+  ALLOC(f->zeta_h, f->nv);
+  ALLOC(f->gamma_k, f->nv);
+  ALLOC(f->psi_k, f->nv);
+  ALLOC(f->u_edge, f->ne);
+  ALLOC(f->out, f->nv);
+  ALLOC(f->rhs, f->nv);
+  ALLOC(f->rhs_w, f->nv);
   ALLOC(f->sol, f->nv);
 
   /* Poisson matrix L on the free vertices: ψ from Γ (156: ⋆ω = dψ, Γ = d̃ ⋆1 dψ) [R]. */
   TRY(csr_restrict(f->L, f->n_free, f->free_list, f->free_of, &Mr));
   st = gm_sparse_cholesky_create(Mr, &f->poisson, &sub);
-  gm_csr_free(Mr); Mr = NULL;
-  if (st) { snprintf(msg, sizeof msg, "fluid: Poisson matrix: %s", sub.message); goto done; }
+  gm_csr_free(Mr);
+  Mr = NULL;
+  if (st) {
+    snprintf(msg, sizeof msg, "fluid: Poisson matrix: %s", sub.message);
+    goto done;
+  }
   /* Semi-implicit steps (153, 154) [R] solved for ψ: Γ + α ν L ⋆0⁻¹ Γ = r with Γ = Lψ + b, i.e.
    * (L + α ν L ⋆0⁻¹ L) ψ = r − b − α ν L ⋆0⁻¹ b, α = dt/2 (half step) and dt (full step);
    * symmetric positive definite on the free vertices. */
@@ -489,17 +598,33 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
     TRY(gm_csr_copy(f->L, &LD));
     gm_csr_scale_cols(LD, inv0);
     TRY(gm_csr_multiply(LD, f->L, &LDL));
-    g = calloc(f->nv, sizeof *g); h = calloc(f->nv, sizeof *h);
-    if (!g || !h) { free(inv0); free(g); free(h); st = GM_ENOMEM; snprintf(msg, sizeof msg, "out of memory"); goto done; }
+    g = calloc(f->nv, sizeof *g);
+    h = calloc(f->nv, sizeof *h);
+    if (!g || !h) {
+      free(inv0);
+      free(g);
+      free(h);
+      st = GM_ENOMEM;
+      snprintf(msg, sizeof msg, "out of memory");
+      goto done;
+    }
     gm_fluid_circulation_of(f, f->psi_bc, g); /* zero ψ on free vertices: g = Lψ_B + b */
     for (int pass = 0; pass < 2; ++pass) {
       double alpha = (pass == 0 ? 0.5 : 1.0) * opt.dt * opt.nu;
       TRY(gm_csr_add(1.0, f->L, alpha, LDL, &M));
       TRY(csr_restrict(M, f->n_free, f->free_list, f->free_of, &Mr));
-      gm_csr_free(M); M = NULL;
+      gm_csr_free(M);
+      M = NULL;
       st = gm_sparse_cholesky_create(Mr, pass == 0 ? &f->m_half : &f->m_full, &sub);
-      gm_csr_free(Mr); Mr = NULL;
-      if (st) { free(inv0); free(g); free(h); snprintf(msg, sizeof msg, "fluid: vorticity matrix: %s", sub.message); goto done; }
+      gm_csr_free(Mr);
+      Mr = NULL;
+      if (st) {
+        free(inv0);
+        free(g);
+        free(h);
+        snprintf(msg, sizeof msg, "fluid: vorticity matrix: %s", sub.message);
+        goto done;
+      }
       for (size_t v = 0; v < f->nv; ++v) h[v] = g[v] * inv0[v];
       gm_csr_matvec(f->L, alpha, h, 0.0, f->sol);
       double *c = pass == 0 ? f->c_half : f->c_full;
@@ -508,7 +633,9 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
         c[i] = -(g[v] + f->sol[v]);
       }
     }
-    free(inv0); free(g); free(h);
+    free(inv0);
+    free(g);
+    free(h);
   }
   /* Scalar (155) [R], diffusion implicit: (⋆0/dt + κL) θ on the non-Dirichlet vertices. */
   if (f->n_wfree) {
@@ -518,14 +645,24 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
     gm_csr *D = NULL;
     st = gm_csr_diagonal(f->nv, d, &D);
     free(d);
-    if (st) { snprintf(msg, sizeof msg, "out of memory"); goto done; }
+    if (st) {
+      snprintf(msg, sizeof msg, "out of memory");
+      goto done;
+    }
     st = gm_csr_add(1.0, D, opt.kappa, f->L, &T);
     gm_csr_free(D);
-    if (st) { snprintf(msg, sizeof msg, "out of memory"); goto done; }
+    if (st) {
+      snprintf(msg, sizeof msg, "out of memory");
+      goto done;
+    }
     TRY(csr_restrict(T, f->n_wfree, f->wfree_list, f->wfree_of, &Mr));
     st = gm_sparse_cholesky_create(Mr, &f->m_theta, &sub);
-    gm_csr_free(Mr); Mr = NULL;
-    if (st) { snprintf(msg, sizeof msg, "fluid: scalar matrix: %s", sub.message); goto done; }
+    gm_csr_free(Mr);
+    Mr = NULL;
+    if (st) {
+      snprintf(msg, sizeof msg, "fluid: scalar matrix: %s", sub.message);
+      goto done;
+    }
     gm_csr_matvec(f->L, -opt.kappa, f->theta_bc, 0.0, f->sol);
     for (size_t i = 0; i < f->n_wfree; ++i) f->c_theta[i] = f->sol[f->wfree_list[i]];
   }
@@ -535,8 +672,16 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
   gm_fluid_circulation_of(f, f->psi, f->gamma);
 
 done:
-  free(bc_of_group); free(edge_bc); free(next); free(next_edge); free(lookup);
-  gm_csr_free(LD); gm_csr_free(LDL); gm_csr_free(M); gm_csr_free(Mr); gm_csr_free(T);
+  free(bc_of_group);
+  free(edge_bc);
+  free(next);
+  free(next_edge);
+  free(lookup);
+  gm_csr_free(LD);
+  gm_csr_free(LDL);
+  gm_csr_free(M);
+  gm_csr_free(Mr);
+  gm_csr_free(T);
   if (st) return fail(err, f, st, msg);
   *out = f;
   return GM_OK;

@@ -14,7 +14,8 @@ static double mean_edge(const gm_complex *cx) {
   const double *x = gm_complex_coordinates(cx);
   double s = 0.0;
   for (size_t k = 0; k < ne; ++k)
-    s += hypot(x[2 * e[2 * k]] - x[2 * e[2 * k + 1]], x[2 * e[2 * k] + 1] - x[2 * e[2 * k + 1] + 1]);
+    s +=
+        hypot(x[2 * e[2 * k]] - x[2 * e[2 * k + 1]], x[2 * e[2 * k] + 1] - x[2 * e[2 * k + 1] + 1]);
   return s / (double)ne;
 }
 
@@ -25,13 +26,17 @@ static gm_status setup(double lx, double ly, size_t nx, gm_mesh **m, gm_fluid_gr
   gm_status st = gm_mesh_rectangle(0, lx, 0, ly, nx, ny, GM_DIAGONAL_ACUTE, m, err);
   if (st) return st;
   st = gm_fluid_groups_rectangle(*m, g, err);
-  if (st) { gm_mesh_free(*m); *m = NULL; }
+  if (st) {
+    gm_mesh_free(*m);
+    *m = NULL;
+  }
   return st;
 }
 
 gm_status gm_fluid_channel(size_t nx, double t_end, gm_fluid_channel_result *r, gm_error *err) {
   if (!r || nx < 8 || nx > 4000 || !(t_end >= 0) || t_end > 1e4)
-    return gm_error_set(err, GM_EINVAL, "channel: nx = %zu must be in [8, 4000], t_end in [0, 1e4]", nx);
+    return gm_error_set(err, GM_EINVAL, "channel: nx = %zu must be in [8, 4000], t_end in [0, 1e4]",
+                        nx);
   memset(r, 0, sizeof *r);
   const double L = 2.0 * GM_PI;
   gm_mesh *m = NULL;
@@ -40,11 +45,18 @@ gm_status gm_fluid_channel(size_t nx, double t_end, gm_fluid_channel_result *r, 
   if (st) return st;
   gm_fluid_bc bc[4];
   memset(bc, 0, sizeof bc);
-  bc[0].group = "bottom"; bc[0].kind = GM_FLUID_WALL; bc[0].scalar = GM_SCALAR_DIRICHLET;
-  bc[1].group = "right"; bc[1].kind = GM_FLUID_OUTFLOW;
-  bc[2].group = "top"; bc[2].kind = GM_FLUID_WALL; bc[2].scalar = GM_SCALAR_DIRICHLET;
+  bc[0].group = "bottom";
+  bc[0].kind = GM_FLUID_WALL;
+  bc[0].scalar = GM_SCALAR_DIRICHLET;
+  bc[1].group = "right";
+  bc[1].kind = GM_FLUID_OUTFLOW;
+  bc[2].group = "top";
+  bc[2].kind = GM_FLUID_WALL;
+  bc[2].scalar = GM_SCALAR_DIRICHLET;
   bc[2].scalar_value = 20.0;
-  bc[3].group = "left"; bc[3].kind = GM_FLUID_INFLOW; bc[3].speed = 1.0;
+  bc[3].group = "left";
+  bc[3].kind = GM_FLUID_INFLOW;
+  bc[3].speed = 1.0;
   bc[3].scalar = GM_SCALAR_DIRICHLET;
   gm_fluid_options o = gm_fluid_defaults();
   o.dt = 1e-2;
@@ -69,7 +81,8 @@ gm_status gm_fluid_channel(size_t nx, double t_end, gm_fluid_channel_result *r, 
     r->div_max = fmax(r->div_max, d.div_max);
   }
   r->steps = n_steps;
-  const size_t ne = gm_complex_count(cx, 1), nt = gm_fluid_n_triangles(f), nv = gm_fluid_n_vertices(f);
+  const size_t ne = gm_complex_count(cx, 1), nt = gm_fluid_n_triangles(f),
+               nv = gm_fluid_n_vertices(f);
   const size_t *edge = gm_complex_simplices(cx, 1), *tri = gm_complex_simplices(cx, 2);
   const double *x = gm_complex_coordinates(cx), *psi = gm_fluid_psi(f), *th = gm_fluid_theta(f);
   size_t count = 0;
@@ -87,12 +100,18 @@ gm_status gm_fluid_channel(size_t nx, double t_end, gm_fluid_channel_result *r, 
   }
   r->profile_error /= (double)(count ? count : 1);
   double *u = malloc(2 * nt * sizeof *u);
-  if (!u) { gm_fluid_free(f); return gm_error_set(err, GM_ENOMEM, "out of memory"); }
+  if (!u) {
+    gm_fluid_free(f);
+    return gm_error_set(err, GM_ENOMEM, "out of memory");
+  }
   gm_fluid_velocity(f, u);
   count = 0;
   for (size_t t = 0; t < nt; ++t) {
     double cxm = 0, cym = 0;
-    for (int k = 0; k < 3; ++k) { cxm += x[2 * tri[3 * t + k]] / 3.0; cym += x[2 * tri[3 * t + k] + 1] / 3.0; }
+    for (int k = 0; k < 3; ++k) {
+      cxm += x[2 * tri[3 * t + k]] / 3.0;
+      cym += x[2 * tri[3 * t + k] + 1] / 3.0;
+    }
     if (cxm < 0.25 * L || cxm > 0.75 * L) continue;
     r->centroid_error += hypot(u[2 * t] - 4.0 * cym * (1.0 - cym), u[2 * t + 1]);
     ++count;
@@ -122,7 +141,8 @@ static int poiseuille_profile(void *c, const double *x, double *u) {
 gm_status gm_fluid_shear(int poiseuille, size_t n, double dt, double t_end,
                          gm_fluid_shear_result *r, gm_error *err) {
   if (!r || n < 4 || n > 4000 || !(dt > 0) || !(t_end >= 0) || t_end / dt > 1e7)
-    return gm_error_set(err, GM_EINVAL, "shear: n = %zu must be in [4, 4000], dt > 0, t_end >= 0", n);
+    return gm_error_set(err, GM_EINVAL, "shear: n = %zu must be in [4, 4000], dt > 0, t_end >= 0",
+                        n);
   memset(r, 0, sizeof *r);
   gm_mesh *m = NULL;
   gm_fluid_groups *g = NULL;
@@ -130,11 +150,18 @@ gm_status gm_fluid_shear(int poiseuille, size_t n, double dt, double t_end,
   if (st) return st;
   gm_fluid_bc bc[4];
   memset(bc, 0, sizeof bc);
-  bc[0].group = "bottom"; bc[0].kind = GM_FLUID_WALL; bc[0].scalar = GM_SCALAR_DIRICHLET;
-  bc[1].group = "right"; bc[1].kind = GM_FLUID_OUTFLOW;
-  bc[2].group = "top"; bc[2].kind = GM_FLUID_WALL; bc[2].velocity[0] = poiseuille ? 0.0 : 1.0;
-  bc[2].scalar = GM_SCALAR_DIRICHLET; bc[2].scalar_value = 1.0;
-  bc[3].group = "left"; bc[3].kind = GM_FLUID_INFLOW;
+  bc[0].group = "bottom";
+  bc[0].kind = GM_FLUID_WALL;
+  bc[0].scalar = GM_SCALAR_DIRICHLET;
+  bc[1].group = "right";
+  bc[1].kind = GM_FLUID_OUTFLOW;
+  bc[2].group = "top";
+  bc[2].kind = GM_FLUID_WALL;
+  bc[2].velocity[0] = poiseuille ? 0.0 : 1.0;
+  bc[2].scalar = GM_SCALAR_DIRICHLET;
+  bc[2].scalar_value = 1.0;
+  bc[3].group = "left";
+  bc[3].kind = GM_FLUID_INFLOW;
   bc[3].profile = poiseuille ? poiseuille_profile : couette_profile;
   gm_fluid_options o = gm_fluid_defaults();
   o.dt = dt;
@@ -144,12 +171,16 @@ gm_status gm_fluid_shear(int poiseuille, size_t n, double dt, double t_end,
   gm_mesh_free(m);
   if (st) return st;
   const gm_complex *cx = gm_fluid_complex(f);
-  const size_t nv = gm_fluid_n_vertices(f), nt = gm_fluid_n_triangles(f), ne = gm_complex_count(cx, 1);
+  const size_t nv = gm_fluid_n_vertices(f), nt = gm_fluid_n_triangles(f),
+               ne = gm_complex_count(cx, 1);
   const double *x = gm_complex_coordinates(cx);
   double *psi = malloc((2 * nv + 2 * nt) * sizeof *psi);
-  if (!psi) { gm_fluid_free(f); return gm_error_set(err, GM_ENOMEM, "out of memory"); }
+  if (!psi) {
+    gm_fluid_free(f);
+    return gm_error_set(err, GM_ENOMEM, "out of memory");
+  }
   double *theta = psi + nv, *u = theta + nv;
-#define PSI_EXACT(y) (poiseuille ? 2.0 * (y) * (y) - 4.0 * (y) * (y) * (y) / 3.0 : 0.5 * (y) * (y))
+#define PSI_EXACT(y) (poiseuille ? 2.0 * (y) * (y)-4.0 * (y) * (y) * (y) / 3.0 : 0.5 * (y) * (y))
   const double c = gm_fluid_psi(f)[0] - PSI_EXACT(x[1]);
   for (size_t v = 0; v < nv; ++v) {
     psi[v] = c + PSI_EXACT(x[2 * v + 1]);

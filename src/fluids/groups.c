@@ -23,7 +23,10 @@ static gm_status groups_alloc(size_t n_groups, size_t n_edges, gm_fluid_groups *
   g->names = calloc(n_groups ? n_groups : 1, sizeof *g->names);
   g->vertices = calloc(2 * (n_edges ? n_edges : 1), sizeof *g->vertices);
   g->group = calloc(n_edges ? n_edges : 1, sizeof *g->group);
-  if (!g->names || !g->vertices || !g->group) { gm_fluid_groups_free(g); return GM_ENOMEM; }
+  if (!g->names || !g->vertices || !g->group) {
+    gm_fluid_groups_free(g);
+    return GM_ENOMEM;
+  }
   g->n_groups = n_groups;
   g->n_edges = n_edges;
   *out = g;
@@ -50,7 +53,10 @@ gm_status gm_fluid_groups_rectangle(const gm_mesh *mesh, gm_fluid_groups **out, 
   const double *x = gm_complex_coordinates(cx);
   gm_fluid_groups *g = NULL;
   st = groups_alloc(4, nb, &g);
-  if (st) { gm_complex_free(cx); return gm_error_set(err, st, "fluid groups: out of memory"); }
+  if (st) {
+    gm_complex_free(cx);
+    return gm_error_set(err, st, "fluid groups: out of memory");
+  }
   static const char *names[4] = {"bottom", "right", "top", "left"};
   for (int k = 0; k < 4; ++k) snprintf(g->names[k], GM_FLUID_NAME_SIZE, "%s", names[k]);
   double tol = 1e-9 * fmax(hi[0] - lo[0], hi[1] - lo[1]);
@@ -69,7 +75,8 @@ gm_status gm_fluid_groups_rectangle(const gm_mesh *mesh, gm_fluid_groups **out, 
       gm_complex_free(cx);
       return gm_error_set(err, GM_EINVAL,
                           "fluid groups: boundary edge at (%g, %g) lies on no side of the "
-                          "rectangle [%g, %g]x[%g, %g]", m[0], m[1], lo[0], hi[0], lo[1], hi[1]);
+                          "rectangle [%g, %g]x[%g, %g]",
+                          m[0], m[1], lo[0], hi[0], lo[1], hi[1]);
     }
     g->vertices[2 * k] = i;
     g->vertices[2 * k + 1] = j;
@@ -120,18 +127,18 @@ gm_status gm_fluid_groups_read_msh(const char *path, const gm_mesh *mesh, gm_flu
   gm_status st = GM_OK;
   char line[512], msg[GM_ERRMSG_SIZE] = "";
   size_t n_names = 0, n_nodes = 0, n_lines = 0, cap_lines = 0, lineno = 0;
-  char (*names)[GM_FLUID_NAME_SIZE] = NULL;
+  char(*names)[GM_FLUID_NAME_SIZE] = NULL;
   long *name_tag = NULL;
   msh_node *nodes = NULL;
-  long (*lines)[3] = NULL; /* node, node, physical tag */
+  long(*lines)[3] = NULL; /* node, node, physical tag */
   vkey *keys = NULL;
   gm_fluid_groups *g = NULL;
   int version_ok = 0;
-#define MSH_FAIL(...)                                        \
-  do {                                                       \
-    st = GM_EINVAL;                                          \
-    snprintf(msg, sizeof msg, __VA_ARGS__);                  \
-    goto done;                                               \
+#define MSH_FAIL(...)                       \
+  do {                                      \
+    st = GM_EINVAL;                         \
+    snprintf(msg, sizeof msg, __VA_ARGS__); \
+    goto done;                              \
   } while (0)
   while (fgets(line, sizeof line, fp)) {
     ++lineno;
@@ -151,13 +158,18 @@ gm_status gm_fluid_groups_read_msh(const char *path, const gm_mesh *mesh, gm_flu
       ++lineno;
       names = calloc(n_names ? n_names : 1, sizeof *names);
       name_tag = calloc(n_names ? n_names : 1, sizeof *name_tag);
-      if (!names || !name_tag) { st = GM_ENOMEM; snprintf(msg, sizeof msg, "out of memory"); goto done; }
+      if (!names || !name_tag) {
+        st = GM_ENOMEM;
+        snprintf(msg, sizeof msg, "out of memory");
+        goto done;
+      }
       for (size_t i = 0; i < n_names; ++i) {
         int dim;
         long tag;
         char nm[256];
         ++lineno;
-        if (!fgets(line, sizeof line, fp) || sscanf(line, "%d %ld \"%255[^\"]\"", &dim, &tag, nm) != 3)
+        if (!fgets(line, sizeof line, fp) ||
+            sscanf(line, "%d %ld \"%255[^\"]\"", &dim, &tag, nm) != 3)
           MSH_FAIL("%s: line %zu: bad physical name", path, lineno);
         name_tag[i] = dim == 1 ? tag : -1; /* only curves bound a 2-D domain */
         size_t len = strlen(nm);
@@ -172,7 +184,11 @@ gm_status gm_fluid_groups_read_msh(const char *path, const gm_mesh *mesh, gm_flu
         MSH_FAIL("%s: line %zu: bad node count", path, lineno + 1);
       ++lineno;
       nodes = calloc(n_nodes ? n_nodes : 1, sizeof *nodes);
-      if (!nodes) { st = GM_ENOMEM; snprintf(msg, sizeof msg, "out of memory"); goto done; }
+      if (!nodes) {
+        st = GM_ENOMEM;
+        snprintf(msg, sizeof msg, "out of memory");
+        goto done;
+      }
       for (size_t i = 0; i < n_nodes; ++i) {
         ++lineno;
         if (!fgets(line, sizeof line, fp) ||
@@ -189,19 +205,26 @@ gm_status gm_fluid_groups_read_msh(const char *path, const gm_mesh *mesh, gm_flu
         long id, type, ntags, tags[16], a, b;
         int used = 0, k = 0;
         ++lineno;
-        if (!fgets(line, sizeof line, fp) || sscanf(line, "%ld %ld %ld%n", &id, &type, &ntags, &used) != 3 ||
-            ntags < 0 || ntags > 16)
+        if (!fgets(line, sizeof line, fp) ||
+            sscanf(line, "%ld %ld %ld%n", &id, &type, &ntags, &used) != 3 || ntags < 0 ||
+            ntags > 16)
           MSH_FAIL("%s: line %zu: bad element", path, lineno);
         if (type != 1) continue;
         const char *p = line + used;
         for (long t = 0; t < ntags; ++t, p += k)
-          if (sscanf(p, "%ld%n", &tags[t], &k) != 1) MSH_FAIL("%s: line %zu: bad tags", path, lineno);
-        if (sscanf(p, "%ld %ld", &a, &b) != 2) MSH_FAIL("%s: line %zu: bad line element", path, lineno);
+          if (sscanf(p, "%ld%n", &tags[t], &k) != 1)
+            MSH_FAIL("%s: line %zu: bad tags", path, lineno);
+        if (sscanf(p, "%ld %ld", &a, &b) != 2)
+          MSH_FAIL("%s: line %zu: bad line element", path, lineno);
         if (ntags < 1) continue;
         if (n_lines == cap_lines) {
           cap_lines = cap_lines ? 2 * cap_lines : 64;
           void *nl = realloc(lines, cap_lines * sizeof *lines);
-          if (!nl) { st = GM_ENOMEM; snprintf(msg, sizeof msg, "out of memory"); goto done; }
+          if (!nl) {
+            st = GM_ENOMEM;
+            snprintf(msg, sizeof msg, "out of memory");
+            goto done;
+          }
           lines = nl;
         }
         lines[n_lines][0] = a;
@@ -213,8 +236,13 @@ gm_status gm_fluid_groups_read_msh(const char *path, const gm_mesh *mesh, gm_flu
   if (!version_ok) MSH_FAIL("%s: no $MeshFormat section", path);
   /* groups: the named physical curves that have line elements */
   keys = calloc(mesh->n_vertices ? mesh->n_vertices : 1, sizeof *keys);
-  if (!keys) { st = GM_ENOMEM; snprintf(msg, sizeof msg, "out of memory"); goto done; }
-  for (size_t v = 0; v < mesh->n_vertices; ++v) keys[v] = (vkey){mesh->x[2 * v], mesh->x[2 * v + 1], v};
+  if (!keys) {
+    st = GM_ENOMEM;
+    snprintf(msg, sizeof msg, "out of memory");
+    goto done;
+  }
+  for (size_t v = 0; v < mesh->n_vertices; ++v)
+    keys[v] = (vkey){mesh->x[2 * v], mesh->x[2 * v + 1], v};
   qsort(keys, mesh->n_vertices, sizeof *keys, cmp_vkey);
   size_t n_used = 0;
   for (size_t i = 0; i < n_lines; ++i) {
@@ -223,7 +251,10 @@ gm_status gm_fluid_groups_read_msh(const char *path, const gm_mesh *mesh, gm_flu
     if (nm < n_names) ++n_used;
   }
   st = groups_alloc(n_names, n_used, &g);
-  if (st) { snprintf(msg, sizeof msg, "out of memory"); goto done; }
+  if (st) {
+    snprintf(msg, sizeof msg, "out of memory");
+    goto done;
+  }
   for (size_t i = 0; i < n_names; ++i) memcpy(g->names[i], names[i], GM_FLUID_NAME_SIZE);
   size_t k = 0;
   for (size_t i = 0; i < n_lines; ++i) {
@@ -233,7 +264,8 @@ gm_status gm_fluid_groups_read_msh(const char *path, const gm_mesh *mesh, gm_flu
     for (int e = 0; e < 2; ++e) {
       msh_node key = {lines[i][e], 0, 0};
       msh_node *nd = bsearch(&key, nodes, n_nodes, sizeof *nodes, cmp_node);
-      if (!nd) MSH_FAIL("%s: line element of \"%s\" uses undefined node %ld", path, names[nm], key.id);
+      if (!nd)
+        MSH_FAIL("%s: line element of \"%s\" uses undefined node %ld", path, names[nm], key.id);
       size_t v = find_vertex(keys, mesh->n_vertices, nd->x, nd->y);
       if (v == SIZE_MAX)
         MSH_FAIL("%s: node %ld of \"%s\" at (%g, %g) is no vertex of the mesh", path, key.id,
@@ -245,7 +277,11 @@ gm_status gm_fluid_groups_read_msh(const char *path, const gm_mesh *mesh, gm_flu
 #undef MSH_FAIL
 done:
   fclose(fp);
-  free(names); free(name_tag); free(nodes); free(lines); free(keys);
+  free(names);
+  free(name_tag);
+  free(nodes);
+  free(lines);
+  free(keys);
   if (st) {
     gm_fluid_groups_free(g);
     return gm_error_set(err, st, "%s", msg);

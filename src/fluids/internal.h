@@ -11,23 +11,23 @@ struct gm_fluid {
   gm_complex *cx;
   gm_geometry *geo;
   size_t nv, ne, nt;
-  const size_t *edge;   /* 2 vertices per edge (borrowed from cx) */
-  const size_t *tri;    /* 3 vertices per triangle (borrowed from cx) */
-  const double *x;      /* coordinates, 2 per vertex (copied into cx, N = 2) */
+  const size_t *edge; /* 2 vertices per edge (borrowed from cx) */
+  const size_t *tri;  /* 3 vertices per triangle (borrowed from cx) */
+  const double *x;    /* coordinates, 2 per vertex (copied into cx, N = 2) */
   double *star0, *star1, *area;
-  double *grad;         /* ∇λ_k of each triangle: 6 per triangle */
-  gm_csr *L;            /* d0ᵀ ⋆1 d0 */
-  gm_csr *S;            /* tangential velocity along edges from ψ: U = S ψ (n_e × n_v) */
+  double *grad; /* ∇λ_k of each triangle: 6 per triangle */
+  gm_csr *L;    /* d0ᵀ ⋆1 d0 */
+  gm_csr *S;    /* tangential velocity along edges from ψ: U = S ψ (n_e × n_v) */
   /* boundary: ccw boundary edges a→b and their outward flux halves */
   size_t nb;
   size_t *b_tail, *b_head;
-  double *b_circ;       /* per vertex: ∫ u_t ds over the boundary part of ∂⋆v (walls, inflows) */
+  double *b_circ; /* per vertex: ∫ u_t ds over the boundary part of ∂⋆v (walls, inflows) */
   /* stream function: free (unknown) vertices and Dirichlet values */
   size_t n_free;
-  size_t *free_of;      /* vertex -> index among free vertices, SIZE_MAX for Dirichlet */
+  size_t *free_of; /* vertex -> index among free vertices, SIZE_MAX for Dirichlet */
   size_t *free_list;
   unsigned char *psi_fixed;
-  double *psi_bc;       /* Dirichlet ψ (0 on free vertices) */
+  double *psi_bc; /* Dirichlet ψ (0 on free vertices) */
   gm_sparse_cholesky *m_half, *m_full, *poisson;
   double *c_half, *c_full; /* constant parts of the right-hand sides (free vertices) */
   /* scalar */

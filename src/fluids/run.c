@@ -21,7 +21,8 @@ static gm_status write_pvd(writer *w, gm_error *err) {
   snprintf(path, sizeof path, "%s/fluid.pvd", w->dir);
   FILE *f = fopen(path, "w");
   if (!f) return gm_error_set(err, GM_EIO, "cannot write %s: %s", path, strerror(errno));
-  fputs("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n", f);
+  fputs("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n",
+        f);
   for (size_t i = 0; i < w->n_vtu; ++i)
     fprintf(f, "<DataSet timestep=\"%.17g\" file=\"fluid_%06zu.vtu\"/>\n", w->times[i], i);
   fputs("</Collection>\n</VTKFile>\n", f);
@@ -84,7 +85,10 @@ gm_status gm_fluid_case_run(const gm_fluid_case *c, const char *out_dir, gm_flui
       st = gm_error_set(err, GM_EIO, "cannot write %s: %s", path, strerror(errno));
       goto done;
     }
-    if (!w.zeta || !w.u3) { st = gm_error_set(err, GM_ENOMEM, "out of memory"); goto done; }
+    if (!w.zeta || !w.u3) {
+      st = gm_error_set(err, GM_ENOMEM, "out of memory");
+      goto done;
+    }
     fputs("step,time,kinetic_energy,enstrophy,total_vorticity,div_max,scalar_mass\n", w.csv);
   }
   gm_fluid_diagnose(f, &rep->first);

@@ -68,8 +68,8 @@ static gm_status scalar_step(gm_fluid *f, const double *psi_half) {
  * (153) Γ^{n+½} = Γ^n − (dt/2) C(ζ^n, ψ^n) − (dt/2) ν L ζ^{n+½}   (convection explicit)
  * (154) Γ^{n+1} = Γ^n − dt C(ζ^{n+½}, ψ^{n+½}) − dt ν L ζ^{n+1}
  * (156) Γ = Lψ + b (⋆ω = dψ), ζ = ⋆0⁻¹ Γ, both solved for ψ on the free vertices;
- * C = gm_fluid_convective_outflow, the d i_u dω term; ν L ζ = ν d0ᵀ⋆1 d0 ⋆0⁻¹ Γ is ν d δ d ω on dual
- * 2-forms. Only the free vertices' rows are equations: on walls and inflows Γ = Lψ + b is the
+ * C = gm_fluid_convective_outflow, the d i_u dω term; ν L ζ = ν d0ᵀ⋆1 d0 ⋆0⁻¹ Γ is ν d δ d ω on
+ * dual 2-forms. Only the free vertices' rows are equations: on walls and inflows Γ = Lψ + b is the
  * circulation the no-slip or inflow velocity gives (the vorticity boundary condition). */
 static gm_status seed_step(gm_fluid *f) {
   const double dt = f->opt.dt;
@@ -102,11 +102,15 @@ void gm_fluid_jacobian(gm_fluid *f, const double *psi, const double *zeta, doubl
     const double *g = f->grad + 6 * t;
     double px = 0, py = 0, zx = 0, zy = 0;
     for (int k = 0; k < 3; ++k) {
-      px += psi[v[k]] * g[2 * k]; py += psi[v[k]] * g[2 * k + 1];
-      zx += zeta[v[k]] * g[2 * k]; zy += zeta[v[k]] * g[2 * k + 1];
+      px += psi[v[k]] * g[2 * k];
+      py += psi[v[k]] * g[2 * k + 1];
+      zx += zeta[v[k]] * g[2 * k];
+      zy += zeta[v[k]] * g[2 * k + 1];
     }
     double j = f->area[t] / 3.0 * (px * zy - py * zx);
-    rate[v[0]] += j; rate[v[1]] += j; rate[v[2]] += j;
+    rate[v[0]] += j;
+    rate[v[1]] += j;
+    rate[v[2]] += j;
   }
 }
 
@@ -146,7 +150,8 @@ static gm_status midpoint_step(gm_fluid *f) {
   }
   snprintf(f->errmsg, sizeof f->errmsg,
            "fluid: the implicit midpoint iteration did not converge in %zu iterations at step %zu "
-           "(t = %g): reduce dt", f->opt.midpoint_max_iter, f->step, f->t);
+           "(t = %g): reduce dt",
+           f->opt.midpoint_max_iter, f->step, f->t);
   return GM_ENOCONV;
 }
 
@@ -160,7 +165,8 @@ gm_status gm_fluid_advance(gm_fluid *f, size_t n_steps) {
                  gm_strerror(st));
       return st;
     }
-    if (gm_first_nonfinite(f->nv, f->psi) != f->nv || gm_first_nonfinite(f->nv, f->theta) != f->nv) {
+    if (gm_first_nonfinite(f->nv, f->psi) != f->nv ||
+        gm_first_nonfinite(f->nv, f->theta) != f->nv) {
       snprintf(f->errmsg, sizeof f->errmsg,
                "fluid: the solution blew up (non-finite value) at step %zu, t = %g", f->step + 1,
                f->t + f->opt.dt);
@@ -193,7 +199,8 @@ gm_status gm_fluid_set_state(gm_fluid *f, const double *psi, const double *theta
     if (f->opt.scheme == GM_FLUID_SEED && f->opt.dt > bound) {
       snprintf(f->errmsg, sizeof f->errmsg,
                "fluid: dt = %g is above the bound %.6g of the explicit half step for this initial "
-               "velocity (2 h_min/|u|max, |u|max = %g)", f->opt.dt, bound, umax);
+               "velocity (2 h_min/|u|max, |u|max = %g)",
+               f->opt.dt, bound, umax);
       return GM_EINVAL;
     }
     f->dt_bound = bound;

@@ -17,8 +17,8 @@ static void write_text(const char *name, const char *text) {
   fclose(f);
 }
 
-#define BOX_WALLS                                                                         \
-  "\"boundaries\": {\"bottom\": {\"type\": \"wall\"}, \"top\": {\"type\": \"wall\"}, "   \
+#define BOX_WALLS                                                                      \
+  "\"boundaries\": {\"bottom\": {\"type\": \"wall\"}, \"top\": {\"type\": \"wall\"}, " \
   "\"left\": {\"type\": \"wall\"}, \"right\": {\"type\": \"wall\"}}"
 
 Test(cli_fluid, help_and_usage) {
@@ -43,19 +43,25 @@ Test(cli_fluid, help_and_usage) {
 }
 
 Test(cli_fluid, bad_cases_name_the_culprit) {
-  struct { const char *text, *needle; } cases[] = {
+  struct {
+    const char *text, *needle;
+  } cases[] = {
       {"{\"mesh\": {\"rectangle\": {}}, " BOX_WALLS ", \"nu\": -1}", "$.nu: viscosity -1 < 0"},
-      {"{\"mesh\": {\"rectangle\": {}}, " BOX_WALLS ", \"kappa\": -2}", "$.kappa: diffusivity -2 < 0"},
+      {"{\"mesh\": {\"rectangle\": {}}, " BOX_WALLS ", \"kappa\": -2}",
+       "$.kappa: diffusivity -2 < 0"},
       {"{\"mesh\": {\"rectangle\": {}}, " BOX_WALLS ", \"dt\": NaN}", "not valid JSON"},
-      {"{\"mesh\": {\"rectangle\": {}}, " BOX_WALLS ", \"dt\": 1e999}", "$.dt: not a finite number"},
+      {"{\"mesh\": {\"rectangle\": {}}, " BOX_WALLS ", \"dt\": 1e999}",
+       "$.dt: not a finite number"},
       {"{\"mesh\": {\"rectangle\": {}}, " BOX_WALLS ", \"nuu\": 1}", "$.nuu: unknown key"},
       {"{\"mesh\": {\"rectangle\": {}}, \"boundaries\": {\"bottom\": {\"type\": \"slip\"}}}",
        "$.boundaries.bottom.type: expected"},
       {"{\"mesh\": {\"rectangle\": {}}, \"boundaries\": {\"bottom\": {\"type\": \"wall\"}, "
-       "\"inlet\": {\"type\": \"inflow\"}}}", "boundary group \"inlet\" (bcs[1]) is not in the mesh"},
+       "\"inlet\": {\"type\": \"inflow\"}}}",
+       "boundary group \"inlet\" (bcs[1]) is not in the mesh"},
       {"{\"mesh\": {\"rectangle\": {}}, \"boundaries\": {\"bottom\": {\"type\": \"wall\"}, "
        "\"top\": {\"type\": \"wall\", \"velocity\": [1, 0]}, \"left\": {\"type\": \"wall\"}, "
-       "\"right\": {\"type\": \"wall\"}}, \"dt\": 0.5}", "above the bound 0.0625 of the explicit half step (2 h_min/|u|max, h_min = 0.03125)"},
+       "\"right\": {\"type\": \"wall\"}}, \"dt\": 0.5}",
+       "above the bound 0.0625 of the explicit half step (2 h_min/|u|max, h_min = 0.03125)"},
       {"{\"mesh\": \"none.msh\", " BOX_WALLS "}", "none.msh"},
   };
   for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
@@ -78,7 +84,8 @@ Test(cli_fluid, closed_box_json_and_files) {
   cr_expect_eq(json_number(root, "steps"), 50);
   cr_expect_eq(json_number(root, "vtu_files"), 6);
   cr_expect_leq(json_number(root, "div_max"), 1e-14);
-  const cJSON *first = cJSON_GetObjectItem(root, "first"), *last = cJSON_GetObjectItem(root, "last");
+  const cJSON *first = cJSON_GetObjectItem(root, "first"),
+              *last = cJSON_GetObjectItem(root, "last");
   double m0 = json_number(first, "scalar_mass"), m1 = json_number(last, "scalar_mass");
   /* measured: relative change 1.1e-16; total vorticity 4e-17 */
   cr_expect_leq(fabs(m1 / m0 - 1.0), 1e-14, "scalar mass %.17g -> %.17g", m0, m1);
@@ -154,8 +161,9 @@ Test(cli_fluid, gmsh_groups_end_to_end) {
   cJSON_Delete(root);
   run_output_free(&r);
   /* a group of the case that the file lacks is named */
-  write_text("tall2.json", "{\"mesh\": \"tall.msh\", \"boundaries\": {"
-                           "\"inlet\": {\"type\": \"inflow\", \"speed\": 1}}}");
+  write_text("tall2.json",
+             "{\"mesh\": \"tall.msh\", \"boundaries\": {"
+             "\"inlet\": {\"type\": \"inflow\", \"speed\": 1}}}");
   r = run_cli("fluid run tall2.json");
   cr_expect_eq(r.status, 2);
   cr_expect(strstr(r.err, "\"inlet\"") != NULL, "%s", r.err);
@@ -164,9 +172,10 @@ Test(cli_fluid, gmsh_groups_end_to_end) {
 
 Test(cli_fluid, blow_up_exits_1_and_keeps_output) {
   /* the seed scheme without viscosity at the explicit bound: energy grows until overflow */
-  write_text("blow.json", "{\"mesh\": {\"rectangle\": {\"cells\": [12, 0]}}, " BOX_WALLS
-                          ", \"nu\": 0, \"kappa\": 0, \"dt\": 0.044, \"t_end\": 200, "
-                          "\"initial\": \"shear_modes\", \"amplitude\": 0.3, \"output_every\": 100}");
+  write_text("blow.json",
+             "{\"mesh\": {\"rectangle\": {\"cells\": [12, 0]}}, " BOX_WALLS
+             ", \"nu\": 0, \"kappa\": 0, \"dt\": 0.044, \"t_end\": 200, "
+             "\"initial\": \"shear_modes\", \"amplitude\": 0.3, \"output_every\": 100}");
   run_output r = run_cli("fluid run blow.json --out blow");
   cr_expect_eq(r.status, 1, "%s", r.err);
   cr_expect(strstr(r.err, "output written so far is kept") != NULL, "%s", r.err);

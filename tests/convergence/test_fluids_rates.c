@@ -48,18 +48,23 @@ static shear_errors run_shear(int pois, size_t n) {
   gm_fluid_velocity(f, u);
   const size_t *tri = gm_complex_simplices(cx, 2);
   for (size_t t = 0; t < nt; ++t) {
-    double y = (x[2 * tri[3 * t] + 1] + x[2 * tri[3 * t + 1] + 1] + x[2 * tri[3 * t + 2] + 1]) / 3.0;
+    double y =
+        (x[2 * tri[3 * t] + 1] + x[2 * tri[3 * t + 1] + 1] + x[2 * tri[3 * t + 2] + 1]) / 3.0;
     double ue = pois ? 4.0 * y * (1.0 - y) : y;
-    e.u += fl_tri_area(x, tri + 3 * t) * ((u[2 * t] - ue) * (u[2 * t] - ue) + u[2 * t + 1] * u[2 * t + 1]);
+    e.u += fl_tri_area(x, tri + 3 * t) *
+           ((u[2 * t] - ue) * (u[2 * t] - ue) + u[2 * t + 1] * u[2 * t + 1]);
   }
   const size_t *edge = gm_complex_simplices(cx, 1);
   for (size_t k = 0; k < ne; ++k)
     e.h += hypot(x[2 * edge[2 * k]] - x[2 * edge[2 * k + 1]],
-                 x[2 * edge[2 * k] + 1] - x[2 * edge[2 * k + 1] + 1]) / (double)ne;
+                 x[2 * edge[2 * k] + 1] - x[2 * edge[2 * k + 1] + 1]) /
+           (double)ne;
   e.psi = sqrt(e.psi);
   e.theta = sqrt(e.theta);
   e.u = sqrt(e.u);
-  free(psi); free(theta); free(u);
+  free(psi);
+  free(theta);
+  free(u);
   gm_fluid_free(f);
   fl_free(&fx);
   return e;
@@ -69,7 +74,10 @@ static double slope(size_t n, const double *h, const double *err) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (size_t i = 0; i < n; ++i) {
     double a = log(h[i]), b = log(err[i]);
-    sx += a; sy += b; sxx += a * a; sxy += a * b;
+    sx += a;
+    sy += b;
+    sxx += a * a;
+    sxy += a * b;
   }
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
@@ -79,14 +87,20 @@ static void check_rates(int pois, double r_psi, double r_theta, double r_u) {
   double h[3], ep[3], et[3], eu[3];
   for (int i = 0; i < 3; ++i) {
     shear_errors e = run_shear(pois, ns[i]);
-    h[i] = e.h; ep[i] = e.psi; et[i] = e.theta; eu[i] = e.u;
+    h[i] = e.h;
+    ep[i] = e.psi;
+    et[i] = e.theta;
+    eu[i] = e.u;
     cr_assert_leq(e.div_max, 1e-14, "n = %zu: max |d1 d psi| = %.3e", ns[i], e.div_max);
   }
   const char *name = pois ? "Poiseuille" : "Couette";
   double p = slope(3, h, ep), t = slope(3, h, et), u = slope(3, h, eu);
-  cr_assert(fabs(p - r_psi) <= 0.15, "%s psi rate %.3f (errors %.3e %.3e %.3e)", name, p, ep[0], ep[1], ep[2]);
-  cr_assert(fabs(t - r_theta) <= 0.15, "%s theta rate %.3f (errors %.3e %.3e %.3e)", name, t, et[0], et[1], et[2]);
-  cr_assert(fabs(u - r_u) <= 0.15, "%s velocity rate %.3f (errors %.3e %.3e %.3e)", name, u, eu[0], eu[1], eu[2]);
+  cr_assert(fabs(p - r_psi) <= 0.15, "%s psi rate %.3f (errors %.3e %.3e %.3e)", name, p, ep[0],
+            ep[1], ep[2]);
+  cr_assert(fabs(t - r_theta) <= 0.15, "%s theta rate %.3f (errors %.3e %.3e %.3e)", name, t, et[0],
+            et[1], et[2]);
+  cr_assert(fabs(u - r_u) <= 0.15, "%s velocity rate %.3f (errors %.3e %.3e %.3e)", name, u, eu[0],
+            eu[1], eu[2]);
 }
 
 /* docs/fluids.md: Couette ψ 2.37, θ 2.02, velocity 1.03 (measured 2.374, 2.019, 1.025) */

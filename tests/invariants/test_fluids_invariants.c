@@ -14,7 +14,10 @@ static gm_fluid *closed_box(size_t n, gm_fluid_scheme scheme, double nu, double 
   fl_fixture fx = fl_rect(1.0, 1.0, n);
   gm_fluid_bc bc[4];
   memset(bc, 0, sizeof bc);
-  for (int k = 0; k < 4; ++k) { bc[k].group = sides[k]; bc[k].kind = GM_FLUID_WALL; }
+  for (int k = 0; k < 4; ++k) {
+    bc[k].group = sides[k];
+    bc[k].kind = GM_FLUID_WALL;
+  }
   gm_fluid_options o = gm_fluid_defaults();
   o.scheme = scheme;
   o.nu = nu;
@@ -33,7 +36,8 @@ static gm_fluid *closed_box(size_t n, gm_fluid_scheme scheme, double nu, double 
     theta[v] = exp(-20.0 * ((X - 0.3) * (X - 0.3) + (Y - 0.6) * (Y - 0.6)));
   }
   cr_assert_eq(gm_fluid_set_state(f, psi, theta), GM_OK, "%s", gm_fluid_errmsg(f));
-  free(psi); free(theta);
+  free(psi);
+  free(theta);
   fl_free(&fx);
   return f;
 }

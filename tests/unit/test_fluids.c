@@ -74,7 +74,8 @@ Test(fluids, bad_input) {
   cr_assert_eq(gm_mesh_rectangle(0, 1, 0, 1, 4, 4, GM_DIAGONAL_RIGHT, &rt.mesh, &err), GM_OK);
   cr_assert_eq(gm_fluid_groups_rectangle(rt.mesh, &rt.groups, &err), GM_OK);
   fl_shear_bcs(0, bc);
-  expect_fail(&rt, 4, bc, NULL, GM_EINVAL, "not well-centred for the diagonal Hodge star: 16 of 56 edges");
+  expect_fail(&rt, 4, bc, NULL, GM_EINVAL,
+              "not well-centred for the diagonal Hodge star: 16 of 56 edges");
   fl_free(&rt);
 }
 
@@ -99,7 +100,8 @@ Test(fluids, circulation_is_exact_vorticity) {
     for (size_t v = 0; v < nv; ++v)
       psi[v] = c + (pois ? fl_poiseuille_psi(x[2 * v + 1]) : fl_couette_psi(x[2 * v + 1]));
     double bmax = 0.0;
-    for (size_t v = 0; v < nv; ++v) bmax = fmax(bmax, fabs(psi_bc[v] - psi[v]) * (psi_bc[v] != 0.0));
+    for (size_t v = 0; v < nv; ++v)
+      bmax = fmax(bmax, fabs(psi_bc[v] - psi[v]) * (psi_bc[v] != 0.0));
     cr_assert_eq(gm_fluid_set_state(f, psi, NULL), GM_OK, "%s", gm_fluid_errmsg(f));
     gm_fluid_vorticity(f, zeta);
     double emax = 0.0;
@@ -114,10 +116,12 @@ Test(fluids, circulation_is_exact_vorticity) {
       emax = fmax(emax, fabs(zeta[v] - exact));
     }
     /* measured: Couette 9.1e-14 (walls included), Poiseuille 9.6e-14 */
-    cr_assert_lt(emax, 1e-12, "%s: max vorticity error %.3e", pois ? "Poiseuille" : "Couette", emax);
+    cr_assert_lt(emax, 1e-12, "%s: max vorticity error %.3e", pois ? "Poiseuille" : "Couette",
+                 emax);
     /* the boundary stream function from the inflow profile is the exact one */
     cr_assert_lt(bmax, 1e-14, "boundary psi error %.3e", bmax);
-    free(psi); free(zeta);
+    free(psi);
+    free(zeta);
     gm_fluid_free(f);
     fl_free(&fx);
   }
@@ -130,7 +134,10 @@ static void convective_errors(size_t n, double *e_conv, double *e_jac) {
   gm_fluid_bc bc[4];
   memset(bc, 0, sizeof bc);
   const char *names[4] = {"bottom", "right", "top", "left"};
-  for (int k = 0; k < 4; ++k) { bc[k].group = names[k]; bc[k].kind = GM_FLUID_WALL; }
+  for (int k = 0; k < 4; ++k) {
+    bc[k].group = names[k];
+    bc[k].kind = GM_FLUID_WALL;
+  }
   gm_fluid_options o = gm_fluid_defaults();
   o.dt = 1e-4;
   gm_fluid *f = NULL;
@@ -157,7 +164,10 @@ static void convective_errors(size_t n, double *e_conv, double *e_jac) {
     *e_conv = fmax(*e_conv, fabs(c[v] / s0[v] - adv));
     *e_jac = fmax(*e_jac, fabs(-j[v] / s0[v] - adv)); /* ζ_t = −u·∇ζ = ∇ψ × ∇ζ */
   }
-  free(psi); free(zeta); free(c); free(j);
+  free(psi);
+  free(zeta);
+  free(c);
+  free(j);
   gm_fluid_free(f);
   fl_free(&fx);
 }
