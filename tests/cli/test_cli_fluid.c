@@ -187,3 +187,17 @@ Test(cli_fluid, blow_up_exits_1_and_keeps_output) {
   cr_expect(strstr(pvd, "fluid_000018.vtu") != NULL);
   free(pvd);
 }
+
+/* The example case runs as documented: the B14 channel at 96 cells along reaches the Poiseuille
+ * kinetic energy ½ · 2π · 8/15 = 1.6755 (measured 1.66799: the entrance region is slower). */
+Test(cli_fluid, example_channel_case) {
+  run_output r = run_cli("fluid run '%s/examples/fluid_channel.json' --json", GM_SOURCE_DIR);
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *root = parse_json(r.out);
+  cr_expect_eq(json_number(root, "steps"), 500);
+  cr_expect_leq(json_number(root, "div_max"), 1e-14);
+  double ke = json_number(cJSON_GetObjectItem(root, "last"), "kinetic_energy");
+  cr_expect(fabs(ke - 1.66799) < 1e-4, "kinetic energy %.6f", ke);
+  cJSON_Delete(root);
+  run_output_free(&r);
+}
