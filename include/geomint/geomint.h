@@ -20,6 +20,7 @@
 #include "geomint/reduction.h"
 #include "geomint/pde.h"
 #include "geomint/experiments.h"
+#include "geomint/fluids.h"
 
 #define GM_VERSION_MAJOR 0
 #define GM_VERSION_MINOR 1

@@ -31,6 +31,7 @@ extern const cli_command cli_pde_command;
 extern const cli_command cli_experiments_command; /* experiments.c */
 /* The command named name (main.c), NULL if none. */
 const cli_command *cli_find_command(const char *name);
+extern const cli_command cli_fluid_command; /* fluid.c */
 
 /* "geomint COMMAND: message" on stderr, one line. */
 #if defined(__GNUC__)

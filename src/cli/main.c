@@ -15,7 +15,8 @@ static const cli_command *const commands[] = {&cli_list_command, &cli_run_comman
                                               &cli_reduction_command,
                                               &cli_routh_command,
                                               &cli_pde_command,
-                                              &cli_experiments_command};
+                                              &cli_experiments_command,
+                                              &cli_fluid_command};
 #define N_COMMANDS (sizeof commands / sizeof commands[0])
 
 void cli_error(const char *command, const char *fmt, ...) {

@@ -1,0 +1,59 @@
+/* Private state of the DEC fluid solver (src/fluids/). */
+#ifndef GEOMINT_FLUIDS_INTERNAL_H
+#define GEOMINT_FLUIDS_INTERNAL_H
+
+#include "geomint/dec.h"
+#include "geomint/fluids.h"
+#include "geomint/sparse.h"
+
+struct gm_fluid {
+  gm_fluid_options opt;
+  gm_complex *cx;
+  gm_geometry *geo;
+  size_t nv, ne, nt;
+  const size_t *edge; /* 2 vertices per edge (borrowed from cx) */
+  const size_t *tri;  /* 3 vertices per triangle (borrowed from cx) */
+  const double *x;    /* coordinates, 2 per vertex (copied into cx, N = 2) */
+  double *star0, *star1, *area;
+  double *grad; /* ∇λ_k of each triangle: 6 per triangle */
+  gm_csr *L;    /* d0ᵀ ⋆1 d0 */
+  gm_csr *S;    /* tangential velocity along edges from ψ: U = S ψ (n_e × n_v) */
+  /* boundary: ccw boundary edges a→b and their outward flux halves */
+  size_t nb;
+  size_t *b_tail, *b_head;
+  double *b_circ; /* per vertex: ∫ u_t ds over the boundary part of ∂⋆v (walls, inflows) */
+  /* stream function: free (unknown) vertices and Dirichlet values */
+  size_t n_free;
+  size_t *free_of; /* vertex -> index among free vertices, SIZE_MAX for Dirichlet */
+  size_t *free_list;
+  unsigned char *psi_fixed;
+  double *psi_bc; /* Dirichlet ψ (0 on free vertices) */
+  gm_sparse_cholesky *m_half, *m_full, *poisson;
+  double *c_half, *c_full; /* constant parts of the right-hand sides (free vertices) */
+  /* scalar */
+  size_t n_wfree;
+  size_t *wfree_of, *wfree_list;
+  unsigned char *theta_fixed;
+  double *theta_bc;
+  gm_sparse_cholesky *m_theta;
+  double *c_theta;
+  /* state and work */
+  double *psi, *theta, *gamma, *zeta;
+  double *psi_h, *gamma_h, *zeta_h, *gamma_k, *psi_k;
+  double *u_edge, *out, *rhs, *rhs_w, *sol;
+  double dt_bound, t, h_min;
+  size_t step, last_iterations;
+  char errmsg[GM_ERRMSG_SIZE];
+};
+
+/* Γ = L ψ + b on every vertex (the circulation around each dual cell, with the boundary part
+ * given by the wall velocity). */
+void gm_fluid_circulation_of(const gm_fluid *f, const double *psi, double *gamma);
+
+/* Net convective outflow of the vertex field q from each dual cell with the velocity of psi:
+ * − d0ᵀ ⋆1 (q ∧ Sψ) plus the boundary half-edge fluxes (the d i_u dω and −δ(ω∧θ) terms, ×⋆0). */
+void gm_fluid_convective_outflow(gm_fluid *f, const double *q, const double *psi, double *out);
+/* ∫ φ_v ∇ψ × ∇ζ per vertex (the P1 Jacobian of the midpoint scheme). */
+void gm_fluid_jacobian(gm_fluid *f, const double *psi, const double *zeta, double *rate);
+
+#endif
