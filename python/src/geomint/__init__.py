@@ -11,3 +11,4 @@ from .ode import (Problem, Integrator, Result, methods, method, problems, proble
 
 __all__ = ["Error", "Problem", "Integrator", "Result", "methods", "method", "problems",
            "problem", "run", "order", "separable", "hamiltonian", "first_order"]
+from . import dec, yee  # noqa: E402  (geomint.plot is imported on demand: matplotlib)
