@@ -33,3 +33,12 @@ def test_docs_snippets_run(tmp_path, monkeypatch, capsys):
     assert "raised by the right-hand side f(t, y) at t = 1.125" in out
     for png in ("energy.png", "orbit.png", "ez.png"):
         assert (tmp_path / png).stat().st_size > 10000
+
+
+def test_readme_python_snippet_runs():
+    with open(os.path.join(SOURCE, "README.md")) as f:
+        blocks = re.findall(r"```python\n(.*?)```", f.read(), flags=re.S)
+    assert len(blocks) == 1
+    namespace = {}
+    exec(compile(blocks[0], "README.md python snippet", "exec"), namespace)
+    assert namespace["r"].q.shape == (1001, 2)
