@@ -7,8 +7,8 @@
 """
 from ._core import Error
 from .ode import (Problem, Integrator, Result, methods, method, problems, problem, run, order,
-                  separable, hamiltonian, first_order)
+                  separable, hamiltonian, lagrangian, first_order)
 
 __all__ = ["Error", "Problem", "Integrator", "Result", "methods", "method", "problems",
-           "problem", "run", "order", "separable", "hamiltonian", "first_order"]
+           "problem", "run", "order", "separable", "hamiltonian", "lagrangian", "first_order"]
 from . import dec, yee  # noqa: E402  (geomint.plot is imported on demand: matplotlib)

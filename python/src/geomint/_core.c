@@ -126,28 +126,46 @@ static PyObject *kinds_list(unsigned mask) {
   return l;
 }
 
+static PyObject *method_row(const gm_method *m) {
+  PyObject *flags = PyList_New(0);
+  for (size_t b = 0; flags && b < GM_N_METHOD_FLAGS; ++b)
+    if (m->flags & (1u << b)) {
+      PyObject *s = PyUnicode_FromString(gm_method_flag_name(b));
+      if (s == NULL || PyList_Append(flags, s) < 0) Py_CLEAR(flags);
+      Py_XDECREF(s);
+    }
+  if (flags == NULL) return NULL;
+  return Py_BuildValue("{s:s,s:s,s:i,s:n,s:N,s:N,s:s,s:s,s:z}", "name", m->name, "family",
+                       gm_method_family_name(m->family), "order", m->order, "stages",
+                       (Py_ssize_t)m->n_stages, "flags", flags, "accepts",
+                       kinds_list(m->accepts), "description",
+                       m->description ? m->description : "", "reference",
+                       m->reference ? m->reference : "", "basic", m->basic);
+}
+
 static PyObject *core_methods(PyObject *self, PyObject *args) {
   (void)self, (void)args;
   PyObject *out = PyList_New(0);
   for (size_t i = 0; out && i < gm_method_count(); ++i) {
-    const gm_method *m = gm_method_at(i);
-    PyObject *flags = PyList_New(0);
-    for (size_t b = 0; flags && b < GM_N_METHOD_FLAGS; ++b)
-      if (m->flags & (1u << b)) {
-        PyObject *s = PyUnicode_FromString(gm_method_flag_name(b));
-        if (s == NULL || PyList_Append(flags, s) < 0) Py_CLEAR(flags);
-        Py_XDECREF(s);
-      }
-    PyObject *row = flags ? Py_BuildValue(
-        "{s:s,s:s,s:i,s:n,s:N,s:N,s:s,s:s,s:z}", "name", m->name, "family",
-        gm_method_family_name(m->family), "order", m->order, "stages", (Py_ssize_t)m->n_stages,
-        "flags", flags, "accepts", kinds_list(m->accepts), "description",
-        m->description ? m->description : "", "reference", m->reference ? m->reference : "",
-        "basic", m->basic) : NULL;
+    PyObject *row = method_row(gm_method_at(i));
     if (row == NULL || PyList_Append(out, row) < 0) Py_CLEAR(out);
     Py_XDECREF(row);
   }
   return out;
+}
+
+
+/* The row of one method by name (table rows and gauss-S / lobatto-iiia-iiib-S). */
+static PyObject *core_method(PyObject *self, PyObject *arg) {
+  (void)self;
+  const char *name = PyUnicode_AsUTF8(arg);
+  if (name == NULL) return NULL;
+  gm_method *owned;
+  const gm_method *m = find_method(name, &owned);
+  if (m == NULL) return NULL;
+  PyObject *row = method_row(m);
+  gm_method_free(owned);
+  return row;
 }
 
 static PyObject *core_problems(PyObject *self, PyObject *args) {
@@ -420,6 +438,22 @@ static int ham_dp(void *ctx, const double *q, const double *p, double *out) {
                      "dH/dp", NAN);
 }
 
+/* Lagrangian: fn = {L(q, v), dL_dq(q, v), dL_dv(q, v)} */
+static double lag_l(void *ctx, const double *q, const double *v) {
+  ProblemObject *self = ctx;
+  return take_scalar(self, call_qp(self, self->fn[FN_A], q, v), "the Lagrangian");
+}
+static int lag_dq(void *ctx, const double *q, const double *v, double *out) {
+  ProblemObject *self = ctx;
+  return take_result(self, call_qp(self, self->fn[FN_B], q, v), out, self->own.dim,
+                     "dL/dq", NAN);
+}
+static int lag_dv(void *ctx, const double *q, const double *v, double *out) {
+  ProblemObject *self = ctx;
+  return take_result(self, call_qp(self, self->fn[FN_C], q, v), out, self->own.dim,
+                     "dL/dv", NAN);
+}
+
 /* first order: fn = {f(t, y), jacobian(t, y) or NULL} */
 static int fo_rhs(void *ctx, double t, const double *y, double *out) {
   ProblemObject *self = ctx;
@@ -462,6 +496,7 @@ static PyObject *callable_or_null(PyObject *o, const char *what, int required) {
 /* Problem(kind, dim, t0, y0, a, b, c, d): the callables by kind (Python layer names them):
  *   "separable":   a = ∇V(q), b = V(q), c = ∇T(p), d = T(p)   (c, d None: T = ½|p|²)
  *   "hamiltonian": a = H(q, p), b = ∂H/∂q, c = ∂H/∂p
+ *   "lagrangian":  a = L(q, v), b = ∂L/∂q, c = ∂L/∂v   (state (q, p), p = ∂L/∂v)
  *   "first-order": a = f(t, y), b = ∂f/∂y (optional) */
 static int Problem_init(ProblemObject *self, PyObject *args, PyObject *kw) {
   static char *names[] = {"kind", "dim", "t0", "y0", "a", "b", "c", "d", NULL};
@@ -509,6 +544,14 @@ static int Problem_init(ProblemObject *self, PyObject *args, PyObject *kw) {
     pb->hamiltonian = ham_h;
     pb->dh_dq = ham_dq;
     pb->dh_dp = ham_dp;
+  } else if (strcmp(kind, "lagrangian") == 0) {
+    pb->kind = GM_PROBLEM_LAGRANGIAN;
+    if (!(self->fn[FN_A] = callable_or_null(a, "L(q, v)", 1))) return -1;
+    if (!(self->fn[FN_B] = callable_or_null(b, "dL/dq", 1))) return -1;
+    if (!(self->fn[FN_C] = callable_or_null(c, "dL/dv", 1))) return -1;
+    pb->lagrangian = lag_l;
+    pb->dl_dq = lag_dq;
+    pb->dl_dv = lag_dv;
   } else if (strcmp(kind, "first-order") == 0) {
     pb->kind = GM_PROBLEM_FIRST_ORDER;
     if (!(self->fn[FN_A] = callable_or_null(a, "f(t, y)", 1))) return -1;
@@ -518,7 +561,8 @@ static int Problem_init(ProblemObject *self, PyObject *args, PyObject *kw) {
     pb->rhs_jacobian = self->fn[FN_B] ? fo_jacobian : NULL;
   } else {
     PyErr_Format(PyExc_ValueError,
-                 "kind must be 'separable', 'hamiltonian' or 'first-order', got '%s'", kind);
+                 "kind must be 'separable', 'hamiltonian', 'lagrangian' or 'first-order', "
+                 "got '%s'", kind);
     return -1;
   }
   gm_error err = {{0}};
@@ -1549,6 +1593,7 @@ static PyObject *core_call_loop(PyObject *mod, PyObject *args) {
 static PyMethodDef core_functions[] = {
     {"methods", core_methods, METH_NOARGS, "the method table as a list of dicts"},
     {"problems", core_problems, METH_NOARGS, "the built-in problems as a list of dicts"},
+    {"method", core_method, METH_O, "the row of one method by name"},
     {"order", (PyCFunction)(void (*)(void))core_order, METH_VARARGS | METH_KEYWORDS,
      "order(method, problem, t_end, basic=None, solver=None) -> dict"},
     {"_call_loop", core_call_loop, METH_VARARGS, "call fn(arg) n times from C"},

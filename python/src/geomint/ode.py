@@ -69,12 +69,11 @@ def methods():
 
 
 def method(name):
-    """The row of one method; geomint.Error with suggestions for an unknown name."""
-    for row in _core.methods():
-        if row["name"] == name:
-            return row
-    _core.Integrator(name, _core.Model("harmonic"))  # raises with "did you mean"
-    return {"name": name}  # gauss-S and lobatto-iiia-iiib-S rows beyond the table
+    """The row of one method (also gauss-S and lobatto-iiia-iiib-S beyond the table);
+    geomint.Error with suggestions for an unknown name."""
+    if not isinstance(name, str):
+        raise TypeError(f"name: expected a str, got {type(name).__name__}")
+    return _core.method(name)
 
 
 def problems():
@@ -131,6 +130,20 @@ def hamiltonian(H, dH_dq, dH_dp, q0, p0, t0=0.0):
     return _core.Problem("hamiltonian", dim, _real("t0", t0), y, H, dH_dq, dH_dp)
 
 
+def lagrangian(L, dL_dq, dL_dv, q0, v0, t0=0.0):
+    """A Lagrangian L(q, v) with its derivatives dL_dq(q, v), dL_dv(q, v), for the
+    variational integrators (vi-*). The state is (q, p) with p = dL_dv(q0, v0) at the start;
+    second derivatives are taken by central differences where Newton needs them (counted in
+    stats["fd_jacobians"])."""
+    for n, f in (("L", L), ("dL_dq", dL_dq), ("dL_dv", dL_dv)):
+        _callable(n, f)
+    q = _vector("q0", q0)
+    v = _vector("v0", v0, q.shape[0])
+    p = _vector("dL_dv(q0, v0)", dL_dv(q.copy(), v.copy()), q.shape[0])
+    return _core.Problem("lagrangian", q.shape[0], _real("t0", t0), np.concatenate([q, p]),
+                         L, dL_dq, dL_dv)
+
+
 def first_order(f, y0, t0=0.0, jacobian=None):
     """y' = f(t, y) with f returning an array of len(y0); jacobian(t, y) -> (n, n) optional."""
     _callable("f", f)
@@ -165,8 +178,9 @@ class Result:
 
     def energy(self):
         """Energy at every output state (NaN array for problems without one)."""
-        return np.array([self.problem.energy(row) if self.problem.energy(row) is not None
-                         else np.nan for row in self.y])
+        energy = self.problem.energy
+        values = [energy(row) for row in self.y]
+        return np.array([np.nan if v is None else v for v in values])
 
     def rel_energy_error(self):
         """|H - H0| / |H0| at every output state (|H - H0| when H0 = 0)."""
