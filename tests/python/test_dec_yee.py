@@ -123,3 +123,24 @@ def test_yee_scene_errors_name_the_json_path():
         yee.Scene(scene_dict()).field("Ex")
     with pytest.raises(ValueError, match="not representable as JSON"):
         yee.Scene({"grid": float("nan")})
+
+
+def test_wedge_flat_sharp():
+    v, t = square(6)
+    cx = dec.Complex.from_arrays(v, t)
+    rng = np.random.default_rng(1)
+    a0, b1 = rng.standard_normal(cx.count(0)), rng.standard_normal(cx.count(1))
+    c1 = rng.standard_normal(cx.count(1))
+    # Leibniz d(a ∧ b) = da ∧ b + a ∧ db for a 0-form and a 1-form (exact up to round-off)
+    lhs = cx.d(1) @ cx.wedge(0, a0, 1, b1)
+    rhs = cx.wedge(1, cx.d(0) @ a0, 1, b1) + cx.wedge(0, a0, 2, cx.d(1) @ b1)
+    assert np.max(np.abs(lhs - rhs)) < 1e-13   # measured 4e-16
+    # anticommutativity of 1-forms (measured 3.3e-16)
+    assert np.max(np.abs(cx.wedge(1, b1, 1, c1) + cx.wedge(1, c1, 1, b1))) < 1e-15
+    # a constant field: flat then sharp gives it back at every vertex
+    X = np.tile([0.3, -1.2], (cx.count(2), 1))
+    alpha = cx.flat(X)
+    np.testing.assert_allclose(cx.sharp(alpha), np.tile([0.3, -1.2], (cx.count(0), 1)),
+                               atol=1e-13)  # measured 4.4e-16
+    with pytest.raises(ValueError, match="alpha: expected"):
+        cx.wedge(0, a0[:-1], 1, b1)

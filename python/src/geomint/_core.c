@@ -1353,7 +1353,76 @@ static PyObject *Complex_poisson_check(ComplexObject *self, PyObject *a) {
                        r.error_max, "error_l2", r.error_l2, "solution_max", r.solution_max, ua);
 }
 
+/* A new float64 array of shape (n, m) (m = 0: 1-D of n). */
+static PyObject *new_doubles(size_t n, size_t m) {
+  npy_intp dims[2] = {(npy_intp)n, (npy_intp)m};
+  return PyArray_SimpleNew(m ? 2 : 1, dims, NPY_DOUBLE);
+}
+
+/* wedge(k, alpha, l, beta): the primal–primal (barycentric) wedge, count(k+l) values. */
+static PyObject *Complex_wedge(ComplexObject *self, PyObject *args) {
+  Py_ssize_t k, l;
+  PyObject *a, *b;
+  if (!PyArg_ParseTuple(args, "nOnO", &k, &a, &l, &b)) return NULL;
+  if (check_k(self, k, (Py_ssize_t)gm_complex_dim(self->cx)) ||
+      check_k(self, l, (Py_ssize_t)gm_complex_dim(self->cx) - k))
+    return NULL;
+  PyArrayObject *aa = as_doubles(a, gm_complex_count(self->cx, (size_t)k), "alpha");
+  if (aa == NULL) return NULL;
+  PyArrayObject *ba = as_doubles(b, gm_complex_count(self->cx, (size_t)l), "beta");
+  PyObject *out = ba ? new_doubles(gm_complex_count(self->cx, (size_t)(k + l)), 0) : NULL;
+  gm_status st = GM_OK;
+  if (out)
+    st = gm_dec_wedge(self->cx, (size_t)k, PyArray_DATA(aa), (size_t)l, PyArray_DATA(ba),
+                      PyArray_DATA((PyArrayObject *)out));
+  Py_DECREF(aa);
+  Py_XDECREF(ba);
+  if (out && st != GM_OK) {
+    Py_DECREF(out);
+    return raise_status(st, "wedge of a %zd-cochain and a %zd-cochain failed", k, l);
+  }
+  return out;
+}
+
+/* flat(X): a vector per top simplex (n_top × N) to a primal 1-cochain. */
+static PyObject *Complex_flat(ComplexObject *self, PyObject *x) {
+  gm_geometry *g = geometry(self);
+  if (g == NULL) return NULL;
+  size_t n = gm_complex_dim(self->cx), N = gm_complex_embedding_dim(self->cx);
+  PyArrayObject *xa = as_doubles(x, gm_complex_count(self->cx, n) * N, "X (one vector per top simplex)");
+  if (xa == NULL) return NULL;
+  PyObject *out = new_doubles(gm_complex_count(self->cx, 1), 0);
+  gm_status st = out ? gm_dec_flat(g, PyArray_DATA(xa), PyArray_DATA((PyArrayObject *)out))
+                     : GM_OK;
+  Py_DECREF(xa);
+  if (out && st != GM_OK) {
+    Py_DECREF(out);
+    return raise_status(st, "flat failed");
+  }
+  return out;
+}
+
+/* sharp(alpha): a primal 1-cochain to a vector per vertex (n_vertices × N). */
+static PyObject *Complex_sharp(ComplexObject *self, PyObject *a) {
+  gm_geometry *g = geometry(self);
+  if (g == NULL) return NULL;
+  PyArrayObject *aa = as_doubles(a, gm_complex_count(self->cx, 1), "alpha (a 1-cochain)");
+  if (aa == NULL) return NULL;
+  PyObject *out = new_doubles(gm_complex_count(self->cx, 0), gm_complex_embedding_dim(self->cx));
+  gm_status st = out ? gm_dec_sharp(g, PyArray_DATA(aa), PyArray_DATA((PyArrayObject *)out))
+                     : GM_OK;
+  Py_DECREF(aa);
+  if (out && st != GM_OK) {
+    Py_DECREF(out);
+    return raise_status(st, "sharp failed");
+  }
+  return out;
+}
+
 static PyMethodDef Complex_methods[] = {
+    {"wedge", (PyCFunction)Complex_wedge, METH_VARARGS, "wedge(k, alpha, l, beta)"},
+    {"flat", (PyCFunction)Complex_flat, METH_O, "flat(X): vectors per top simplex -> 1-cochain"},
+    {"sharp", (PyCFunction)Complex_sharp, METH_O, "sharp(alpha): 1-cochain -> vectors per vertex"},
     {"d", (PyCFunction)Complex_d, METH_VARARGS, "d(k) -> (data, indices, indptr, shape)"},
     {"codifferential", (PyCFunction)Complex_codifferential, METH_VARARGS, "δ_k as CSR parts"},
     {"laplacian", (PyCFunction)Complex_laplacian, METH_VARARGS, "Δ_k as CSR parts"},

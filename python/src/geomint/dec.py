@@ -92,6 +92,20 @@ class Complex:
         """Primal (or dual) volumes of the k-simplices."""
         return self._cx.volumes(k, bool(dual))
 
+    def wedge(self, k, alpha, l, beta):
+        """Primal–primal wedge α∧β of a k-cochain and an l-cochain (barycentric; Leibniz
+        holds exactly): count(k + l) values."""
+        return self._cx.wedge(k, np.asarray(alpha, dtype=np.float64), l,
+                              np.asarray(beta, dtype=np.float64))
+
+    def flat(self, X):
+        """♭ of a vector field given per top simplex (shape (count(dim), N)): a 1-cochain."""
+        return self._cx.flat(np.asarray(X, dtype=np.float64))
+
+    def sharp(self, alpha):
+        """♯ of a 1-cochain: a vector per vertex, shape (count(0), N)."""
+        return self._cx.sharp(np.asarray(alpha, dtype=np.float64))
+
     def quality(self):
         """The mesh quality report (counts, Euler characteristic, degenerate, inverted and
         not-well-centred cells, ⋆ ranges, volumes and edge lengths)."""
