@@ -22,7 +22,8 @@ rm -rf "$copy"
 mkdir -p "$copy"
 cp -r "$source/python/pyproject.toml" "$source/python/setup.py" "$source/python/src" "$copy/"
 GEOMINT_BUILD_DIR="$build" GEOMINT_SOURCE_DIR="$source" \
-  "$venv/bin/pip" install --quiet --no-build-isolation --no-index --no-deps "$copy"
+  PIP_DISABLE_PIP_VERSION_CHECK=1 "$venv/bin/pip" install --quiet --no-cache-dir \
+  --no-build-isolation --no-index --no-deps "$copy"
 cd "$build"
 export GEOMINT_CLI="$build/geomint" GEOMINT_BUILD_DIR="$build" GEOMINT_SOURCE_DIR="$source"
 export MPLBACKEND=Agg

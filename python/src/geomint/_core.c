@@ -918,7 +918,6 @@ static PyObject *owned_array(double *data, int nd, npy_intp *dims) {
 
 /* Run and return (t, y) of the recorded states, the recording buffers handed to NumPy. */
 static PyObject *finish_run(IntegratorObject *self, gm_status st) {
-  self->recording = self->recording ? 1 : 0;
   ProblemBase *pb = self->pb;
   if (pb->pending) return reraise_pending(pb, gm_integrator_time(self->it));
   if (st != GM_OK)
