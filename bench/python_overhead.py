@@ -245,6 +245,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="smaller sizes (a smoke test)")
     ap.add_argument("--json", help="also write the result to this file")
+    ap.add_argument("--periods", type=int, help="Kepler periods of part 3 (default 200, quick 20)")
+    ap.add_argument("--budget", type=float,
+                    help="CPU seconds a SciPy method may spend on its tolerances (default 150)")
     ap.add_argument("--figure", help="draw the solve_ivp comparison into this PNG")
     ap.add_argument("--figure-from", help="only draw --figure from a JSON result of this script")
     args = ap.parse_args()
@@ -267,11 +270,12 @@ def main():
           f"{pf['geomint_per_eval_ns']:.0f} ns (ratio {pf['ratio']:.3f}); cffi trampoline "
           + (f"{pf['cffi_per_eval_ns']:.0f} ns (ratio {pf['cffi_ratio']:.3f})"
              if pf["cffi_per_eval_ns"] else "not measured (no cffi)"))
-    periods, tol = (20 if quick else 200), 1e-8
+    periods, tol = args.periods or (20 if quick else 200), 1e-8
+    budget = args.budget or (30 if quick else 150)
     rows = [geomint_to_tolerance(m, periods, tol)
             for m in ("yoshida-6", "blanes-moan-6", "kahan-li-8", "sofroniou-spaletta-10")]
     for m in ("RK45", "DOP853", "Radau"):
-        rows.append(scipy_to_tolerance(m, periods, tol, 30 if quick else 150))
+        rows.append(scipy_to_tolerance(m, periods, tol, budget))
     out["kepler_to_1e-8"] = {"periods": periods, "e": 0.6, "tolerance": tol, "rows": rows}
     for r in rows:
         s = f"{r['seconds']:.3f} s" if r["seconds"] is not None else r.get("note", "-")
