@@ -260,6 +260,10 @@ static int check_options(const run_options *o, const cli_option *options, size_t
     cli_error("run", "--steps must be at least 1");
     return CLI_EXIT_USAGE;
   }
+  if (steps && (double)o->steps > 1e15) { /* the driver's limit (gm_integrator_integrate) */
+    cli_error("run", "--steps %zu is more than 1e15", o->steps);
+    return CLI_EXIT_USAGE;
+  }
   if (o->every == 0) {
     cli_error("run", "--every must be at least 1");
     return CLI_EXIT_USAGE;

@@ -381,6 +381,9 @@ gm_status gm_integrator_run(gm_integrator *it, size_t n_steps, double h) {
   if (it == NULL) return GM_EINVAL;
   gm_status st = check_step(it, h);
   if (st != GM_OK) return st;
+  if ((double)n_steps > 1e15) /* as gm_integrator_integrate: a count past it is an overflow */
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                   "%zu steps requested: more than 1e15", n_steps);
   return run_steps(it, n_steps, h, it->t + (double)n_steps * h);
 }
 
