@@ -89,3 +89,13 @@ Test(cli_maxwell_hostile, a_failed_harminv_is_a_failed_run) {
   cr_expect(strstr(r.err, "probe p: harminv failed") != NULL, "%s", r.err);
   run_output_free(&r);
 }
+
+Test(cli_maxwell_hostile, vtu_prefix_folder_is_created) {
+  /* docs/cli.md's `--vtu snap/s` failed on a fresh folder; it is made as --out folders are */
+  run_output r = run_cli("maxwell mesh --rect 8 --t-end 0.2 --vtu snap/s");
+  cr_expect_eq(r.status, 0, "%s", r.err);
+  FILE *f = fopen(path_in_tmp("snap/s.pvd"), "r");
+  cr_expect_not_null(f, "snap/s.pvd was not written: %s", r.err);
+  if (f != NULL) fclose(f);
+  run_output_free(&r);
+}
