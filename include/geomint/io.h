@@ -40,6 +40,12 @@ int gm_csv_writer_observe(void *writer, size_t step, double t, const double *y);
  * would write (checked at the first row: GM_EINVAL there otherwise). */
 gm_status gm_csv_writer_resume(const char *path, const gm_problem *problem, const double *y0,
                                double t_last, gm_csv_writer **out, gm_error *err);
+/* The same, refusing (GM_EINVAL, the file untouched) when its last whole row at or before
+ * t_last is more than max_gap before it: a file that ends long before the checkpoint is the
+ * output of another run, and continuing it would make its rows jump in time. */
+gm_status gm_csv_writer_resume_within(const char *path, const gm_problem *problem,
+                                      const double *y0, double t_last, double max_gap,
+                                      gm_csv_writer **out, gm_error *err);
 /* An extra column after the invariants: fn(ctx, step, t, y) gives its value at each row
  * (name copied, ctx borrowed). Only before the first row (the header is written with it). */
 typedef double (*gm_csv_column_fn)(void *ctx, size_t step, double t, const double *y);

@@ -302,6 +302,12 @@ gm_status gm_integrator_load_file(gm_integrator *it, const char *path, void *ext
 /* Continue the run that was in progress when the loaded checkpoint was saved (the remaining
  * steps of gm_integrator_run / gm_integrator_integrate, on the same time grid). */
 gm_status gm_integrator_resume(gm_integrator *it);
+/* Make the loaded run (in progress or finished) the run gm_integrator_run(n_steps, h)
+ * (n_steps > 0) or gm_integrator_integrate(t_end, h) (n_steps == 0) would have made from the
+ * same start, so that gm_integrator_resume continues it to the new end bitwise identically to
+ * that run without interruption. GM_EINVAL (integrator unchanged) when the new run's step
+ * differs from the saved one in any bit or ends before the saved step. */
+gm_status gm_integrator_extend_run(gm_integrator *it, size_t n_steps, double t_end, double h);
 
 double gm_integrator_time(const gm_integrator *it);
 const double *gm_integrator_state(const gm_integrator *it); /* borrowed, valid until next call */

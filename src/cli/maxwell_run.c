@@ -328,7 +328,7 @@ int mx_run_main(int argc, char **argv) {
   const char *out_dir = "maxwell-output";
   const char *plot = NULL, *plot_field = NULL;
   int json = 0, check = 0;
-  size_t threads = 0;
+  size_t threads = (size_t)-1; /* not given: the solver's default */
   cli_option options[] = {{"--out", CLI_ARG_STRING, &out_dir, 0},
                           {"--json", CLI_ARG_FLAG, &json, 0},
                           {"--check", CLI_ARG_FLAG, &check, 0},
@@ -348,6 +348,10 @@ int mx_run_main(int argc, char **argv) {
     return CLI_EXIT_USAGE;
   }
   const char *path = positional[0];
+  if (threads == 0 || (threads != (size_t)-1 && threads > 4096)) {
+    cli_error(COMMAND, "--threads must be in [1, 4096], got %zu", threads);
+    return CLI_EXIT_USAGE;
+  }
   if (plot_field != NULL && plot == NULL) {
     cli_error(COMMAND, "--plot-field needs --plot FILE.png");
     return CLI_EXIT_USAGE;
@@ -359,7 +363,7 @@ int mx_run_main(int argc, char **argv) {
     cli_error(COMMAND, "%s", scene_err.message);
     return CLI_EXIT_USAGE;
   }
-  if (threads > 0) scene.options.n_threads = (int)threads;
+  if (threads != (size_t)-1) scene.options.n_threads = (int)threads;
   gm_yee *solver = NULL;
   if (gm_yee_scene_build(&scene, path, &solver, &scene_err) != GM_OK) {
     cli_error(COMMAND, "%s", scene_err.message);
@@ -431,6 +435,13 @@ int mx_run_main(int argc, char **argv) {
   }
   if (status == CLI_EXIT_OK && scene.energy_every > 0 && steps % scene.energy_every != 0)
     observe_energy(&r, solver);
+  /* finite fields can still give an energy that overflows (ε|E|² near the top of a double) */
+  for (size_t i = 0; status == CLI_EXIT_OK && i < r.energy.n * r.energy.width; ++i)
+    if (!isfinite(r.energy.values[i])) {
+      cli_error(COMMAND, "the energy is not finite at t = %g: the run overflowed",
+                r.energy.t[i / r.energy.width]);
+      status = CLI_EXIT_FAILURE;
+    }
   if (status == CLI_EXIT_OK && scene.n_probes > 0)
     status = write_probes_csv(mx_path(file, sizeof file, out_dir, "probes.csv"), &scene, solver);
   static const char *const energy_names[] = {"electric", "magnetic", "plain", "leapfrog"};
@@ -473,6 +484,13 @@ int mx_run_main(int argc, char **argv) {
       status = print_json(path, &scene, solver, wall, steps, pr, flux_integral, &r, out_dir, n_snap);
     else
       print_text(path, &scene, solver, wall, steps, pr, flux_integral, &r, out_dir, n_snap);
+    /* the results are printed (and say which probe failed), but a failed harminv is a failed
+     * run: never exit 0 */
+    for (size_t k = 0; status == CLI_EXIT_OK && scene.harminv && k < scene.n_probes; ++k)
+      if (pr[k].error[0] != '\0') {
+        cli_error(COMMAND, "probe %s: harminv failed: %s", scene.probes[k].name, pr[k].error);
+        status = CLI_EXIT_FAILURE;
+      }
   }
   free(pr);
   free(flux_integral);

@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cJSON.h>
@@ -40,7 +41,9 @@ static const char usage[] =
     "  --restart FILE     continue the run saved in FILE (same problem, --set, method, --basic,\n"
     "                     --solver, --compensated, --dt and --t-end or --steps); the CSV given\n"
     "                     with --out is continued after the checkpoint's last row, and the\n"
-    "                     result is bitwise that of the run without interruption\n\n"
+    "                     result is bitwise that of the run without interruption; a later\n"
+    "                     --t-end or --steps with the same --dt continues the run (finished\n"
+    "                     or not) to there, bitwise as the longer run\n\n"
     "A state, energy or invariant that becomes NaN or infinite stops the run with an error\n"
     "naming the step and the component; the CSV ends with the last finite row. Ctrl-C (SIGINT)\n"
     "stops at the next step, keeps the CSV (whole rows) and exits with status 130.\n";
@@ -248,6 +251,15 @@ static int seen(const cli_option *options, size_t n, const char *name) {
   return 0;
 }
 
+/* Do a and b name one file (the same path, or the same inode when both exist)? */
+static int same_file(const char *a, const char *b) {
+  if (a == NULL || b == NULL) return 0;
+  if (strcmp(a, b) == 0) return 1;
+  struct stat sa, sb;
+  return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
+}
+
 static int check_options(const run_options *o, const cli_option *options, size_t n_options) {
   if (cli_check_positive("run", "--dt", o->dt) != CLI_EXIT_OK) return CLI_EXIT_USAGE;
   const int t_end = seen(options, n_options, "--t-end"), steps = seen(options, n_options, "--steps");
@@ -260,6 +272,10 @@ static int check_options(const run_options *o, const cli_option *options, size_t
     cli_error("run", "--steps must be at least 1");
     return CLI_EXIT_USAGE;
   }
+  if (steps && (double)o->steps > 1e15) { /* the driver's limit (gm_integrator_integrate) */
+    cli_error("run", "--steps %zu is more than 1e15", o->steps);
+    return CLI_EXIT_USAGE;
+  }
   if (o->every == 0) {
     cli_error("run", "--every must be at least 1");
     return CLI_EXIT_USAGE;
@@ -268,6 +284,17 @@ static int check_options(const run_options *o, const cli_option *options, size_t
     cli_error("run", "--every-checkpoint needs --checkpoint FILE");
     return CLI_EXIT_USAGE;
   }
+  /* one file for two outputs: the checkpoint's rename would replace the CSV (or --out would
+   * overwrite the checkpoint being continued) */
+  const char *files[3][2] = {{"--checkpoint", o->checkpoint}, {"--out", o->out},
+                             {"--restart", o->restart}};
+  for (int a = 0; a < 2; ++a)
+    for (int b = a + 1; b < 3; ++b)
+      if (!(a == 0 && b == 2) && same_file(files[a][1], files[b][1])) {
+        cli_error("run", "%s and %s name the same file (%s)", files[a][0], files[b][0],
+                  files[b][1]);
+        return CLI_EXIT_USAGE;
+      }
   if (o->checkpoint != NULL && o->every_checkpoint == 0) {
     if (seen(options, n_options, "--every-checkpoint")) {
       cli_error("run", "--every-checkpoint must be at least 1");

@@ -101,6 +101,18 @@ static int load_checkpoint(const char *command, const cli_sim_config *c, gm_inte
   return CLI_EXIT_OK;
 }
 
+/* The loaded run becomes the run this command asks for: the same one, or a longer one with the
+ * same step (gm_integrator_extend_run). */
+static int extend_run(const char *command, const cli_sim_config *c, gm_integrator *it,
+                      cli_sim_result *r) {
+  if (gm_integrator_chooses_steps(it)) return CLI_EXIT_OK; /* continues to its saved end */
+  if (gm_integrator_extend_run(it, c->n_steps, c->t_end, c->dt) != GM_OK) {
+    sim_error(r, command, "--restart %s: %s", c->restart_path, gm_integrator_errmsg(it));
+    return CLI_EXIT_USAGE;
+  }
+  return CLI_EXIT_OK;
+}
+
 /* Create everything the run needs; returns an exit status. */
 static int prepare(const char *command, const cli_sim_config *c, const double *y0, double t0,
                    gm_integrator **it, gm_csv_writer **csv, checkpointer *cp,
@@ -124,13 +136,8 @@ static int prepare(const char *command, const cli_sim_config *c, const double *y
   int status;
   if (c->restart_path != NULL) { /* first to learn where the run stopped */
     if ((status = load_checkpoint(command, c, *it, NULL, r)) != CLI_EXIT_OK) return status;
-    const double t_end = c->n_steps > 0 ? t0 + (double)c->n_steps * c->dt : c->t_end;
-    if (!gm_integrator_chooses_steps(*it) && gm_integrator_run_end_time(*it) != t_end) {
-      sim_error(r, command, "--restart %s: the checkpoint's run ends at t = %.17g, this one at "
-                "%.17g: give the same --dt and --t-end or --steps", c->restart_path,
-                gm_integrator_run_end_time(*it), t_end);
-      return CLI_EXIT_USAGE;
-    }
+    /* the same run, or a longer one (a finished run continued to a later --t-end/--steps) */
+    if ((status = extend_run(command, c, *it, r)) != CLI_EXIT_OK) return status;
     r->restarted = 1;
     r->restart_step = gm_integrator_stats(*it).steps;
     r->restart_t = gm_integrator_time(*it);
@@ -142,11 +149,18 @@ static int prepare(const char *command, const cli_sim_config *c, const double *y
     return CLI_EXIT_FAILURE;
   }
   if (c->csv_path != NULL) {
-    st = r->restarted ? gm_csv_writer_resume(c->csv_path, pb, y0, r->restart_t, csv, &err)
+    /* a CSV being continued has a row at most one observation interval (--every steps)
+     * before the checkpoint; vi-sem-* choose their steps: no bound */
+    const double max_gap = gm_integrator_chooses_steps(*it)
+                               ? INFINITY
+                               : (double)c->csv_every * c->dt * (1.0 + 1e-9) +
+                                     1e-12 * fabs(r->restart_t);
+    st = r->restarted ? gm_csv_writer_resume_within(c->csv_path, pb, y0, r->restart_t, max_gap,
+                                                    csv, &err)
                       : gm_csv_writer_create(c->csv_path, pb, y0, csv, &err);
     if (st != GM_OK) {
       sim_error(r, command, "%s", err.message);
-      return CLI_EXIT_FAILURE;
+      return st == GM_EINVAL ? CLI_EXIT_USAGE : CLI_EXIT_FAILURE;
     }
     r->energy_column = gm_csv_writer_column(*csv, "rel_energy_error");
     if (gm_integrator_chooses_steps(*it) &&
@@ -162,7 +176,8 @@ static int prepare(const char *command, const cli_sim_config *c, const double *y
   }
   *cp = (checkpointer){*it, *csv, r->monitor, c->checkpoint_path, 0, ""};
   /* again, now that the observers are there: they have seen the saved step */
-  if (r->restarted && (status = load_checkpoint(command, c, *it, r->monitor, r)) != CLI_EXIT_OK)
+  if (r->restarted && ((status = load_checkpoint(command, c, *it, r->monitor, r)) != CLI_EXIT_OK ||
+                       (status = extend_run(command, c, *it, r)) != CLI_EXIT_OK))
     return status;
   return CLI_EXIT_OK;
 }

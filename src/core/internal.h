@@ -25,6 +25,20 @@ gm_status gm_error_set(gm_error *err, gm_status status, const char *fmt, ...);
 
 #define GM_PI 3.14159265358979323846
 
+/* input_file.c: open a file the user named for reading; NULL with a message in why (capacity
+ * cap) when it cannot be opened or is a directory, block device or socket. Never blocks on a
+ * FIFO without a writer (it reads as empty). */
+#include <stdio.h>
+FILE *gm_input_open(const char *path, char *why, size_t cap);
+
+/* json_strict.c: the offset of the first place where text breaks the JSON grammar in a way
+ * cJSON accepts (a number like 050 or 1., bytes that are not UTF-8 or raw control characters in
+ * a string), with *why saying what; strlen(text) with *why = NULL when there is none. */
+size_t gm_json_check_text(const char *text, const char **why);
+/* Copy in to out (capacity cap, NUL-terminated) with control bytes written as \xNN, so that a
+ * message never sends a raw ESC sequence to a terminal; returns the length written. */
+size_t gm_escape_controls(const char *in, char *out, size_t cap);
+
 /* Index of the first non-finite entry of x[0..n), or n when all are finite. The driver checks
  * every new state, so the common case is one pass of integer operations with one-cycle
  * latency: a double is NaN or ±inf exactly when its exponent bits are all ones (IEEE 754). */

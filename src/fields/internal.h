@@ -175,6 +175,11 @@ void yee_select_kernels(gm_yee *s);
 void yee_update_e(gm_yee *s);
 void yee_update_h(gm_yee *s);
 gm_status yee_cpml_setup(gm_yee *s, gm_error *err);
+/* yee_memory.c: sizes estimated before allocating (bytes in double: no overflow) */
+double yee_memory_budget(void);
+const char *yee_bytes_text(double bytes, char *out, size_t cap);
+double yee_grid_bytes(const gm_yee_grid *grid, int complex_fields);
+gm_status yee_memory_check(double bytes, const char *what, gm_error *err);
 void yee_cpml_apply(gm_yee *s, int e_field);
 void yee_sources_apply(gm_yee *s, int e_field);
 void yee_sources_begin_e(gm_yee *s);

@@ -2,6 +2,7 @@
  * its CPML, TF/SF and source terms and its boundary ghosts; then probes record and observers
  * that are due see the state. Nothing here allocates. Also initial fields and probes. */
 #include <math.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -205,6 +206,17 @@ gm_status gm_yee_add_probe(gm_yee *s, gm_yee_component c, const double x[3], siz
   if (yee_locate(s, (int)c, x, ijk) != 0)
     return gm_fail(s->errmsg, sizeof s->errmsg, GM_EINVAL,
                    "probe: (%g, %g, %g) is outside the grid", x[0], x[1], x[2]);
+  {
+    /* this buffer and those already held */
+    double bytes = (2.0 + (s->n_parts == 2)) * 8.0 * ((double)capacity + 1.0);
+    for (size_t i = 0; i < s->n_probes; ++i)
+      bytes += (2.0 + (s->n_parts == 2)) * 8.0 * ((double)s->probes[i].capacity + 1.0);
+    char what[128];
+    gm_error e = {{0}};
+    snprintf(what, sizeof what, "probe: buffers of %zu samples", capacity);
+    if (yee_memory_check(bytes, what, &e) != GM_OK)
+      return gm_fail(s->errmsg, sizeof s->errmsg, GM_EINVAL, "%s", e.message);
+  }
   yee_probe p = {.component = (int)c, .index = yee_idx(&s->L, ijk[0], ijk[1], ijk[2]),
                  .capacity = capacity};
   p.t = malloc((capacity + 1) * sizeof(double));

@@ -2,6 +2,7 @@
  * the CFL check, Bloch phases, CPML (yee_cpml.c) and the kernel choice. All allocation of the
  * time loop happens here. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -249,6 +250,14 @@ gm_status gm_yee_create(const gm_yee_grid *grid, const gm_yee_materials *materia
                         "(dt <= 1/(c_max sqrt(sum 1/h^2)))",
                         dt, dt_max);
 
+  {
+    const int complex_fields = o.bloch_k[0] != 0.0 || o.bloch_k[1] != 0.0 || o.bloch_k[2] != 0.0;
+    char what[160];
+    snprintf(what, sizeof what, "yee: the field and coefficient arrays of %zu x %zu x %zu cells",
+             axes > 0 ? grid->n[0] : 1, axes > 1 ? grid->n[1] : 1, axes > 2 ? grid->n[2] : 1);
+    st = yee_memory_check(yee_grid_bytes(grid, complex_fields), what, err);
+    if (st != GM_OK) return st;
+  }
   gm_yee *s = calloc(1, sizeof *s);
   if (s == NULL) return gm_error_set(err, GM_ENOMEM, "yee: out of memory");
   s->opt = o;

@@ -1,6 +1,7 @@
 /* Materials: ε, μ, σ per cell, painted from shapes (a cell takes the medium when its centre is
  * inside). The solver turns them into edge and face Hodge-star coefficients at create time. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -31,17 +32,24 @@ gm_status yee_grid_check(const gm_yee_grid *grid, gm_error *err) {
   return GM_OK;
 }
 
+/* A medium's values must be positive and within 1e±100 (sigma up to 1e100): the solver forms
+ * sums and products of neighbouring cells' values (edge averages, σΔt/2ε, ε|E|²), which
+ * overflow to inf or NaN near the limits of a double (ε = 1e308 gave an energy of NaN). */
+#define MEDIUM_MAX 1e100
+#define MEDIUM_MIN 1e-100
+
 static gm_status medium_check(gm_yee_materials *m, const gm_medium *md) {
   if (md == NULL) return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL, "medium: NULL");
-  if (!(md->epsilon > 0.0) || !isfinite(md->epsilon))
+  const double v[2] = {md->epsilon, md->mu};
+  static const char *const name[2] = {"epsilon", "mu"};
+  for (int k = 0; k < 2; ++k)
+    if (!(v[k] >= MEDIUM_MIN && v[k] <= MEDIUM_MAX))
+      return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                     "medium: %s must be in [%g, %g] (got %g)", name[k], MEDIUM_MIN,
+                     MEDIUM_MAX, v[k]);
+  if (!(md->sigma >= 0.0 && md->sigma <= MEDIUM_MAX))
     return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
-                   "medium: epsilon must be > 0 and finite (got %g)", md->epsilon);
-  if (!(md->mu > 0.0) || !isfinite(md->mu))
-    return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
-                   "medium: mu must be > 0 and finite (got %g)", md->mu);
-  if (!(md->sigma >= 0.0) || !isfinite(md->sigma))
-    return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
-                   "medium: sigma must be >= 0 and finite (got %g)", md->sigma);
+                   "medium: sigma must be in [0, %g] (got %g)", MEDIUM_MAX, md->sigma);
   return GM_OK;
 }
 
@@ -50,6 +58,13 @@ gm_status gm_yee_materials_create(const gm_yee_grid *grid, gm_yee_materials **ou
   if (out == NULL) return gm_error_set(err, GM_EINVAL, "materials: NULL output");
   *out = NULL;
   gm_status st = yee_grid_check(grid, err);
+  if (st != GM_OK) return st;
+  const size_t axes0 = gm_yee_dim_axes(grid->dim);
+  double cells = 1.0;
+  for (size_t a = 0; a < axes0; ++a) cells *= (double)grid->n[a];
+  char what[128];
+  snprintf(what, sizeof what, "materials: epsilon, mu and sigma of %.0f cells", cells);
+  st = yee_memory_check(3.0 * 8.0 * cells, what, err);
   if (st != GM_OK) return st;
   gm_yee_materials *m = calloc(1, sizeof *m);
   if (m == NULL) return gm_error_set(err, GM_ENOMEM, "materials: out of memory");
@@ -67,8 +82,9 @@ gm_status gm_yee_materials_create(const gm_yee_grid *grid, gm_yee_materials **ou
   m->mu = malloc(m->n_cells * sizeof(double));
   m->sigma = malloc(m->n_cells * sizeof(double));
   if (m->epsilon == NULL || m->mu == NULL || m->sigma == NULL) {
+    const size_t n_cells = m->n_cells; /* read before m is freed */
     gm_yee_materials_free(m);
-    return gm_error_set(err, GM_ENOMEM, "materials: out of memory for %zu cells", m->n_cells);
+    return gm_error_set(err, GM_ENOMEM, "materials: out of memory for %zu cells", n_cells);
   }
   const gm_medium vac = gm_medium_vacuum();
   gm_yee_materials_fill(m, &vac);

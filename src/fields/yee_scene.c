@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fields/internal.h"
 #include "geomint/yee_scene.h"
 
 /* ---- the JSON path of the value being read ----------------------------------------------- */
@@ -51,7 +52,9 @@ static int fail(parser *p, const char *fmt, ...) {
   va_start(ap, fmt);
   vsnprintf(what, sizeof what, fmt, ap);
   va_end(ap);
-  snprintf(p->msg, p->cap, "%s: %s: %s", p->name, p->len > 0 ? p->path : "(top level)", what);
+  char raw[2 * GM_ERRMSG_SIZE];
+  snprintf(raw, sizeof raw, "%s: %s: %s", p->name, p->len > 0 ? p->path : "(top level)", what);
+  gm_escape_controls(raw, p->msg, p->cap); /* a key like "\u001b[31m" must not reach a terminal */
   return -1;
 }
 
@@ -308,6 +311,18 @@ static int parse_grid(parser *p, const cJSON *root, gm_yee_scene *s) {
       size_t o2 = push_index(p, a);
       rc = fail(p, "must be > 0, got %g", x);
       pop(p, o2);
+      pop(p, o);
+    }
+  }
+  if (rc == 0) {
+    /* the solver's arrays, estimated before anything is allocated */
+    gm_yee_grid est = s->grid;
+    for (size_t a = 0; a < 3; ++a) est.n[a] = a < axes ? (size_t)cells[a] : 1;
+    gm_error e = {{0}};
+    if (yee_memory_check(yee_grid_bytes(&est, 0), "the fields, coefficients and materials",
+                         &e) != GM_OK) {
+      size_t o = push_key(p, "cells");
+      rc = fail(p, "%.0f x %.0f x %.0f cells: %s", cells[0], cells[1], cells[2], e.message);
       pop(p, o);
     }
   }
@@ -656,6 +671,13 @@ static int parse_sources(parser *p, const cJSON *root, gm_yee_scene *s) {
   return for_each_object(p, list, "sources", parse_source, s);
 }
 
+/* A name that would break the CSV header it becomes: separators, quotes, control bytes. */
+static int bad_name(const char *name) {
+  for (const unsigned char *c = (const unsigned char *)name; *c != '\0'; ++c)
+    if (*c == ',' || *c == '"' || *c < 0x20 || *c == 0x7F) return 1;
+  return 0;
+}
+
 /* One element of "probes". */
 static int parse_probe(parser *p, const cJSON *item, size_t i, gm_yee_scene *s) {
   const size_t axes = gm_yee_dim_axes(s->grid.dim);
@@ -668,9 +690,9 @@ static int parse_probe(parser *p, const cJSON *item, size_t i, gm_yee_scene *s) 
       get_vector(p, item, "position", 1, axes, 3, 0, pr->x) != 0 ||
       get_string(p, item, "name", 0, &name) < 0)
     rc = -1;
-  if (rc == 0 && name != NULL && strpbrk(name, ",\"\n") != NULL) {
+  if (rc == 0 && name != NULL && bad_name(name)) {
     size_t o2 = push_key(p, "name");
-    rc = fail(p, "a probe name may not hold commas, quotes or line breaks");
+    rc = fail(p, "a probe name (a CSV column) may not hold commas, quotes or control characters");
     pop(p, o2);
   }
   if (rc == 0) {
@@ -703,6 +725,11 @@ static int parse_flux(parser *p, const cJSON *item, size_t i, gm_yee_scene *s) {
       get_number(p, item, "position", 1, &fl->position) != 0 ||
       get_string(p, item, "name", 0, &name) < 0)
     rc = -1;
+  if (rc == 0 && name != NULL && bad_name(name)) {
+    size_t o2 = push_key(p, "name");
+    rc = fail(p, "a flux name (a CSV column) may not hold commas, quotes or control characters");
+    pop(p, o2);
+  }
   if (rc == 0) {
     const gm_yee_grid *g = &s->grid;
     /* the solver's flux planes are the interior vertex planes 1 .. n−1 (fields.h) */
@@ -716,7 +743,7 @@ static int parse_flux(parser *p, const cJSON *item, size_t i, gm_yee_scene *s) {
       pop(p, o2);
     } else {
       fl->index = (size_t)floor(u + 0.5);
-      if (name != NULL && strpbrk(name, ",\"\n") == NULL)
+      if (name != NULL)
         snprintf(fl->name, sizeof fl->name, "%s", name);
       else
         snprintf(fl->name, sizeof fl->name, "flux_%zu", i);
@@ -827,6 +854,7 @@ static int parse_run(parser *p, const cJSON *root, gm_yee_scene *s) {
   int has_dt = rc == 0 ? get_number(p, obj, "dt", 0, &s->options.dt) : -1;
   int has_c = has_dt >= 0 ? get_number(p, obj, "courant", 0, &s->options.courant) : -1;
   if (rc == 0 && (has_dt < 0 || has_c < 0)) rc = -1;
+  if (rc == 0 && has_dt == 0 && has_c == 0) rc = fail(p, "give \"dt\" or \"courant\", not both");
   if (rc == 0 && has_dt == 0 && !(s->options.dt > 0)) {
     size_t o = push_key(p, "dt");
     rc = fail(p, "must be > 0, got %g", s->options.dt);
@@ -841,6 +869,55 @@ static int parse_run(parser *p, const cJSON *root, gm_yee_scene *s) {
   return rc;
 }
 
+/* Line and column (from 1) of offset `at` in text, for messages about the text itself. */
+static void text_position(const char *text, const char *at, size_t *line, size_t *col) {
+  *line = 1, *col = 1;
+  for (const char *c = text; at != NULL && c < at && *c; ++c) {
+    if (*c == '\n')
+      ++*line, *col = 1;
+    else
+      ++*col;
+  }
+}
+
+static int by_string(const void *a, const void *b) {
+  return strcmp((*(const cJSON *const *)a)->string, (*(const cJSON *const *)b)->string);
+}
+
+/* A key given twice in one object is an error (cJSON keeps both and the lookup finds the first,
+ * so the second was silently ignored). Sorted so that a large object costs n log n. */
+static int check_duplicates(parser *p, const cJSON *v) {
+  if (!cJSON_IsObject(v) && !cJSON_IsArray(v)) return 0;
+  size_t n = (size_t)cJSON_GetArraySize(v), k = 0;
+  if (cJSON_IsObject(v) && n > 1) {
+    const cJSON **item = malloc(n * sizeof *item);
+    if (item == NULL) return fail(p, "out of memory");
+    const cJSON *c;
+    cJSON_ArrayForEach(c, v) item[k++] = c;
+    qsort(item, n, sizeof *item, by_string);
+    const char *twice = NULL;
+    for (k = 1; k < n && twice == NULL; ++k)
+      if (strcmp(item[k - 1]->string, item[k]->string) == 0) twice = item[k]->string;
+    free(item);
+    if (twice != NULL) {
+      size_t o = push_key(p, twice);
+      int rc = fail(p, "given twice (a key may appear once in an object)");
+      pop(p, o);
+      return rc;
+    }
+  }
+  const cJSON *c;
+  k = 0;
+  cJSON_ArrayForEach(c, v) {
+    size_t o = cJSON_IsObject(v) ? push_key(p, c->string) : push_index(p, k);
+    int rc = check_duplicates(p, c);
+    pop(p, o);
+    if (rc != 0) return rc;
+    ++k;
+  }
+  return 0;
+}
+
 gm_status gm_yee_scene_parse(const char *text, const char *name, gm_yee_scene *s,
                              gm_error *err) {
   char *msg = err->message;
@@ -848,22 +925,29 @@ gm_status gm_yee_scene_parse(const char *text, const char *name, gm_yee_scene *s
   memset(s, 0, sizeof *s);
   s->options = gm_yee_defaults();
   parser p = {{0}, 0, msg, cap, name};
+  size_t line, col;
+  const char *why = NULL;
+  const size_t bad = gm_json_check_text(text, &why);
+  if (why != NULL) {
+    text_position(text, text + bad, &line, &col);
+    snprintf(msg, cap, "%s: line %zu, column %zu: not valid JSON: %s", name, line, col, why);
+    return GM_EINVAL;
+  }
   const char *end = NULL;
-  cJSON *root = cJSON_ParseWithOpts(text, &end, 0);
+  cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
   if (root == NULL) {
     /* cJSON reports where it stopped: turn that into a line and column */
-    size_t line = 1, col = 1;
-    for (const char *c = text; end != NULL && c < end && *c; ++c) {
-      if (*c == '\n')
-        ++line, col = 1;
-      else
-        ++col;
-    }
-    snprintf(msg, cap, "%s: line %zu, column %zu: not valid JSON", name, line, col);
+    text_position(text, end, &line, &col);
+    cJSON *first = cJSON_ParseWithOpts(text, NULL, 0);
+    snprintf(msg, cap, "%s: line %zu, column %zu: not valid JSON%s", name, line, col,
+             first != NULL ? ": text after the end of the scene object (one object per file)"
+                           : "");
+    cJSON_Delete(first);
     return GM_EINVAL;
   }
   int rc = 0;
   if (!cJSON_IsObject(root)) rc = fail(&p, "expected an object, got %s", type_name(root));
+  if (rc == 0) rc = check_duplicates(&p, root);
   static const char *const keys[] = {"grid", "background", "materials", "boundaries", "pml",
                                      "bloch_k", "sources", "probes", "flux", "output", "run",
                                      "description", NULL};
@@ -893,9 +977,10 @@ gm_status gm_yee_scene_load(const char *path, gm_yee_scene *s, gm_error *err) {
   char *msg = err->message;
   size_t cap = sizeof err->message;
   memset(s, 0, sizeof *s);
-  FILE *f = fopen(path, "rb");
+  char why[GM_ERRMSG_SIZE];
+  FILE *f = gm_input_open(path, why, sizeof why);
   if (f == NULL) {
-    snprintf(msg, cap, "cannot open %s: %s", path, strerror(errno));
+    gm_escape_controls(why, msg, cap);
     return GM_EIO;
   }
   size_t len = 0, size = 4096;
@@ -920,6 +1005,13 @@ gm_status gm_yee_scene_load(const char *path, gm_yee_scene *s, gm_error *err) {
     return GM_ENOMEM;
   }
   text[len] = '\0';
+  if (len == 0) {
+    free(text);
+    char raw[GM_ERRMSG_SIZE];
+    snprintf(raw, sizeof raw, "%s: the file is empty", path);
+    gm_escape_controls(raw, msg, cap);
+    return GM_EINVAL;
+  }
   gm_status rc = gm_yee_scene_parse(text, path, s, err);
   free(text);
   return rc;
@@ -938,9 +1030,29 @@ void gm_yee_scene_clear(gm_yee_scene *s) {
   memset(s, 0, sizeof *s);
 }
 
+/* The longest run a scene may ask for, as `geomint run` (GM_MAX_STEPS elsewhere): past it a
+ * step count is not a run but an overflow (time 1e300 or dt 1e-300 gave 0 steps and exit 0). */
+#define SCENE_MAX_STEPS 1e15
+
+static double steps_wanted(const gm_yee_scene *s, double dt) {
+  if (s->steps > 0) return (double)s->steps;
+  return floor(s->time / dt * (1.0 + 1e-12));
+}
+
 size_t gm_yee_scene_total_steps(const gm_yee_scene *s, double dt) {
-  if (s->steps > 0) return s->steps;
-  return (size_t)floor(s->time / dt * (1.0 + 1e-12));
+  const double n = steps_wanted(s, dt);
+  return n >= 0 && n <= SCENE_MAX_STEPS ? (size_t)n : 0; /* 0: refused by gm_yee_scene_build */
+}
+
+/* What a run of the scene records besides the grid: the probe buffers of the solver and the
+ * energy and flux series of `maxwell run` (one row of 5 and of n_fluxes + 1 doubles). */
+static double recorded_bytes(const gm_yee_scene *s, double steps) {
+  const int complex_fields = s->options.bloch_k[0] != 0.0 || s->options.bloch_k[1] != 0.0 ||
+                             s->options.bloch_k[2] != 0.0;
+  double bytes = (double)s->n_probes * (2.0 + complex_fields) * 8.0 * (steps + 2.0);
+  if (s->energy_every > 0) bytes += 5.0 * 8.0 * (steps / (double)s->energy_every + 2.0);
+  if (s->n_fluxes > 0) bytes += ((double)s->n_fluxes + 2.0) * 8.0 * (steps + 1.0);
+  return bytes;
 }
 
 gm_status gm_yee_scene_build(gm_yee_scene *s, const char *name, gm_yee **out,
@@ -954,7 +1066,26 @@ gm_status gm_yee_scene_build(gm_yee_scene *s, const char *name, gm_yee **out,
     snprintf(msg, cap, "%s: %.400s", name, err.message);
     return GM_EINVAL;
   }
-  size_t steps = gm_yee_scene_total_steps(s, gm_yee_dt(solver));
+  const double dt = gm_yee_dt(solver), wanted = steps_wanted(s, dt);
+  const char *run_key = s->steps > 0 ? "run.steps" : s->options.dt > 0 ? "run.dt" : "run.time";
+  if (!(wanted <= SCENE_MAX_STEPS)) {
+    snprintf(msg, cap, "%s: %s: time %g at dt = %g is %.3g steps, more than %.0e", name, run_key,
+             s->time, dt, wanted, SCENE_MAX_STEPS);
+    gm_yee_free(solver);
+    return GM_EINVAL;
+  }
+  const size_t steps = (size_t)wanted;
+  {
+    char what[160];
+    snprintf(what, sizeof what, "the records of %zu steps (%zu probe%s%s%s)", steps,
+             s->n_probes, s->n_probes == 1 ? "" : "s", s->energy_every > 0 ? ", energy" : "",
+             s->n_fluxes > 0 ? ", flux" : "");
+    if (yee_memory_check(recorded_bytes(s, wanted), what, &err) != GM_OK) {
+      snprintf(msg, cap, "%s: %s: %.400s", name, run_key, err.message);
+      gm_yee_free(solver);
+      return GM_EINVAL;
+    }
+  }
   for (size_t k = 0; k < s->n_points; ++k)
     if (gm_yee_add_point_source(solver, &s->points[k], NULL) != GM_OK) {
       snprintf(msg, cap, "%s: sources[%zu]: %s", name, s->point_json[k], gm_yee_errmsg(solver));

@@ -41,6 +41,20 @@ gm_status gm_waveform_check(const gm_waveform *w, gm_error *err) {
   if (!isfinite(w->amplitude) || !isfinite(w->frequency) || !isfinite(w->width) ||
       !isfinite(w->delay) || !isfinite(w->phase))
     return gm_error_set(err, GM_EINVAL, "waveform: a parameter is NaN or infinite");
+  /* Every parameter within 1e100 (a positive width at least 1e-100): the value is formed from
+   * products such as 2πf·(t − delay) and (t − delay)²/width², which overflow to inf and give
+   * NaN (cos(inf), 0·inf) for values near the limits of a double, e.g. delay = 1e308. */
+  const double v[5] = {w->amplitude, w->frequency, w->width, w->delay, w->phase};
+  static const char *const name[5] = {"amplitude", "frequency", "width", "delay", "phase"};
+  for (int k = 0; k < 5; ++k)
+    if (fabs(v[k]) > 1e100)
+      return gm_error_set(err, GM_EINVAL,
+                          "waveform: %s = %g is beyond 1e100 (the waveform would overflow)",
+                          name[k], v[k]);
+  if (w->width > 0.0 && w->width < 1e-100)
+    return gm_error_set(err, GM_EINVAL,
+                        "waveform: width = %g is below 1e-100 (the waveform would overflow)",
+                        w->width);
   switch (w->kind) {
   case GM_WAVE_GAUSSIAN:
   case GM_WAVE_DGAUSSIAN:

@@ -158,13 +158,14 @@ static double relative_error(double h, double h0) {
 /* Resume: read the file, keep its header (checked at the first row) and its whole rows up to
  * the last with t <= t_last, cut the rest, and open it for appending. */
 static gm_status keep_rows_until(gm_csv_writer *w, const char *path, double t_last,
-                                 gm_error *err) {
+                                 double max_gap, gm_error *err) {
   FILE *f = fopen(path, "rb");
   if (f == NULL)
     return gm_error_set(err, GM_EIO, "cannot continue '%s': %s", path, strerror(errno));
   char *line = NULL;
   size_t cap = 0, header_len = 0;
   long long keep = 0;
+  double t_kept = NAN; /* the time of the last row kept */
   ssize_t len;
   gm_status st = GM_OK;
   if ((len = getline(&line, &cap, f)) <= 0 || line[len - 1] != '\n') {
@@ -183,10 +184,20 @@ static gm_status keep_rows_until(gm_csv_writer *w, const char *path, double t_la
     if (end == line || *end != ',' || !(t <= t_last)) break;
     keep += len;
     w->rows++;
+    t_kept = t;
   }
   free(line);
   fclose(f);
   if (st != GM_OK) return st;
+  /* checked before anything is cut: a file that ends long before t_last is another run's */
+  if (!(t_last - t_kept <= max_gap)) {
+    if (isnan(t_kept))
+      return gm_error_set(err, GM_EINVAL, "cannot continue '%s': it has no row at or before "
+                          "t = %.17g", path, t_last);
+    return gm_error_set(err, GM_EINVAL, "cannot continue '%s': its rows end at t = %.17g, "
+                        "before t = %.17g (more than %.3g earlier): it is not the output of "
+                        "the run being continued", path, t_kept, t_last, max_gap);
+  }
   w->fd = open(path, O_WRONLY | O_CLOEXEC);
   if (w->fd < 0) return GM_OK; /* reported by the caller */
   if (ftruncate(w->fd, (off_t)keep) != 0 || lseek(w->fd, 0, SEEK_END) < 0)
@@ -197,7 +208,8 @@ static gm_status keep_rows_until(gm_csv_writer *w, const char *path, double t_la
 
 /* Open path: truncated (t_last NaN), or kept up to its last row with t <= t_last (resume). */
 static gm_status open_writer(const char *path, const gm_problem *problem, const double *y0,
-                             double t_last, gm_csv_writer **out, gm_error *err) {
+                             double t_last, double max_gap, gm_csv_writer **out,
+                             gm_error *err) {
   if (out == NULL) return gm_error_set(err, GM_EINVAL, "csv writer: out is NULL");
   *out = NULL;
   if (path == NULL || path[0] == '\0')
@@ -229,7 +241,7 @@ static gm_status open_writer(const char *path, const gm_problem *problem, const 
   }
   if (isnan(t_last)) {
     w->fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  } else if ((st = keep_rows_until(w, path, t_last, err)) != GM_OK) {
+  } else if ((st = keep_rows_until(w, path, t_last, max_gap, err)) != GM_OK) {
     gm_csv_writer_free(w);
     return st;
   }
@@ -245,7 +257,7 @@ static gm_status open_writer(const char *path, const gm_problem *problem, const 
 
 gm_status gm_csv_writer_create(const char *path, const gm_problem *problem, const double *y0,
                                gm_csv_writer **out, gm_error *err) {
-  return open_writer(path, problem, y0, NAN, out, err);
+  return open_writer(path, problem, y0, NAN, INFINITY, out, err);
 }
 
 void gm_csv_writer_free(gm_csv_writer *w) {
@@ -345,7 +357,15 @@ gm_status gm_csv_writer_add_column(gm_csv_writer *w, const char *name, gm_csv_co
 gm_status gm_csv_writer_resume(const char *path, const gm_problem *problem, const double *y0,
                                double t_last, gm_csv_writer **out, gm_error *err) {
   if (isnan(t_last)) return gm_error_set(err, GM_EINVAL, "csv writer: t_last is NaN");
-  return open_writer(path, problem, y0, t_last, out, err);
+  return open_writer(path, problem, y0, t_last, INFINITY, out, err);
+}
+
+gm_status gm_csv_writer_resume_within(const char *path, const gm_problem *problem,
+                                      const double *y0, double t_last, double max_gap,
+                                      gm_csv_writer **out, gm_error *err) {
+  if (isnan(t_last)) return gm_error_set(err, GM_EINVAL, "csv writer: t_last is NaN");
+  if (!(max_gap >= 0.0)) return gm_error_set(err, GM_EINVAL, "csv writer: max_gap < 0");
+  return open_writer(path, problem, y0, t_last, max_gap, out, err);
 }
 
 size_t gm_csv_writer_rows(const gm_csv_writer *w) {

@@ -11,6 +11,7 @@
  *   u64 method-state size, bytes, u64 extra size, bytes,
  *   u64 FNV-1a checksum of everything before it. */
 #include <errno.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -178,6 +179,64 @@ static gm_status truncated(gm_integrator *it, const char *what) {
                  "checkpoint: the file ends early (in %s): truncated", what);
 }
 
+/* Every field of a checkpoint, checked as input before anything is applied. */
+static gm_status check_saved(gm_integrator *it, const saved *v) {
+  char *m = it->errmsg;
+  const size_t cap = sizeof it->errmsg;
+  if (!isfinite(v->t)) return gm_fail(m, cap, GM_EINVAL, "checkpoint: time t = %g", v->t);
+  size_t bad = gm_first_nonfinite(it->n, v->y);
+  if (bad < it->n)
+    return gm_fail(m, cap, GM_EINVAL, "checkpoint: state component %zu is %g", bad + 1,
+                   v->y[bad]);
+  bad = gm_first_nonfinite(it->n, v->carry);
+  if (bad < it->n)
+    return gm_fail(m, cap, GM_EINVAL, "checkpoint: compensation carry %zu is %g", bad + 1,
+                   v->carry[bad]);
+  /* far off the state space (a run may drift past GM_STATE_DEFECT_TOLERANCE legitimately:
+   * a method that does not keep the manifold; 1e-3 is no such drift) */
+  const double defect = gm_problem_state_defect(it->problem, v->y);
+  if (!(defect <= 1e-3))
+    return gm_fail(m, cap, GM_EINVAL, "checkpoint: the state is off the state space: %s = %.3g",
+                   gm_problem_state_defect_name(it->problem), defect);
+  if (gm_problem_has_energy(it->problem)) { /* a singular state (two bodies at one point) */
+    const double e = gm_problem_energy(it->problem, v->y);
+    if (!isfinite(e))
+      return gm_fail(m, cap, GM_EINVAL,
+                     "checkpoint: the state is singular for this problem (energy %g)", e);
+  }
+  if (v->run_kind > 2)
+    return gm_fail(m, cap, GM_EINVAL, "checkpoint: run kind %u (0, 1 or 2)", v->run_kind);
+  if (v->run_kind == 0) return GM_OK;
+  if (!isfinite(v->run_t0) || !isfinite(v->run_t_last) || !isfinite(v->run_h) ||
+      v->run_h == 0.0 || (v->run_kind == 2 && !(v->run_h > 0.0)))
+    return gm_fail(m, cap, GM_EINVAL,
+                   "checkpoint: the run's step h = %g (must be finite and non-zero), start %g, "
+                   "end %g (finite)", v->run_h, v->run_t0, v->run_t_last);
+  /* a run goes from t0 towards t_last in the direction of h (gm_integrator_run takes h < 0) */
+  const double lo = fmin(v->run_t0, v->run_t_last), hi = fmax(v->run_t0, v->run_t_last);
+  if ((v->run_h > 0.0) != (v->run_t_last >= v->run_t0) ||
+      (v->run_kind == 1 && !(v->t >= lo && v->t <= hi)))
+    return gm_fail(m, cap, GM_EINVAL,
+                   "checkpoint: a run from %g to %g with step h = %g at t = %g is inconsistent",
+                   v->run_t0, v->run_t_last, v->run_h, v->t);
+  if (v->run_kind == 1) {
+    if ((double)v->run_steps > 1e15 || v->step_index < v->run_start ||
+        v->step_index - v->run_start > v->run_steps)
+      return gm_fail(m, cap, GM_EINVAL,
+                     "checkpoint: step %llu is not in the run of %llu steps from step %llu",
+                     (unsigned long long)v->step_index, (unsigned long long)v->run_steps,
+                     (unsigned long long)v->run_start);
+    /* the time on the run's grid (as the driver sets it: t0 + k h, the last t_last) */
+    const gm_run run = {v->run_t0, v->run_h, v->run_t_last, (size_t)v->run_steps};
+    const double expected = gm_run_time(&run, (size_t)(v->step_index - v->run_start));
+    if (fabs(v->t - expected) > 1e-9 * fmax(1.0, fabs(expected)))
+      return gm_fail(m, cap, GM_EINVAL,
+                     "checkpoint: t = %.17g is not the time %.17g of step %llu of its run", v->t,
+                     expected, (unsigned long long)(v->step_index - v->run_start));
+  }
+  return GM_OK;
+}
+
 gm_status gm_integrator_load(gm_integrator *it, FILE *f, void *extra, size_t extra_cap,
                              size_t *extra_size) {
   if (it == NULL) return GM_EINVAL;
@@ -226,8 +285,9 @@ gm_status gm_integrator_load(gm_integrator *it, FILE *f, void *extra, size_t ext
                    v.compensated ? "with" : "without", it->compensated ? "with it" : "without");
   if (v.n != it->n || v.dim != it->dim)
     return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
-                   "checkpoint: a problem with state size %llu, this one has %zu",
-                   (unsigned long long)v.n, it->n);
+                   "checkpoint: a problem of dimension %llu with state size %llu, this one has "
+                   "dimension %zu and state size %zu",
+                   (unsigned long long)v.dim, (unsigned long long)v.n, it->dim, it->n);
   const gm_stepper_state *ms = gm_stepper_state_of(it->stepper);
   const size_t ms_size = ms != NULL && ms->size != NULL ? ms->size(it) : 0;
   v.y = malloc(it->n * sizeof(double) + 1);
@@ -289,10 +349,9 @@ gm_status gm_integrator_load(gm_integrator *it, FILE *f, void *extra, size_t ext
                  (unsigned long long)v.extra_size, extra_cap);
     goto done;
   }
-  if (gm_first_nonfinite(it->n, v.y) < it->n || !(v.t == v.t)) {
-    st = gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL, "checkpoint: non-finite state");
-    goto done;
-  }
+  /* a valid checksum says the file is as written, not that it was written by geomint: every
+   * field is input (a forged h = 0 or t = inf ran, a singular state gave NaN) */
+  if ((st = check_saved(it, &v)) != GM_OK) goto done;
   /* everything read and checked: apply */
   memcpy(it->y, v.y, it->n * sizeof(double));
   memcpy(it->carry, v.carry, it->n * sizeof(double));
@@ -322,10 +381,9 @@ gm_status gm_integrator_load_file(gm_integrator *it, const char *path, void *ext
   if (it == NULL) return GM_EINVAL;
   if (path == NULL)
     return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL, "checkpoint: no file name");
-  FILE *f = fopen(path, "rb");
-  if (f == NULL)
-    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EIO, "checkpoint: cannot open '%s': %s",
-                   path, strerror(errno));
+  char what[GM_ERRMSG_SIZE];
+  FILE *f = gm_input_open(path, what, sizeof what); /* a directory or a FIFO says what it is */
+  if (f == NULL) return gm_fail(it->errmsg, sizeof it->errmsg, GM_EIO, "%s", what);
   gm_status st = gm_integrator_load(it, f, extra, extra_cap, extra_size);
   /* anything after the checksum is not ours */
   if (st == GM_OK && fgetc(f) != EOF)

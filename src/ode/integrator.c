@@ -381,6 +381,9 @@ gm_status gm_integrator_run(gm_integrator *it, size_t n_steps, double h) {
   if (it == NULL) return GM_EINVAL;
   gm_status st = check_step(it, h);
   if (st != GM_OK) return st;
+  if ((double)n_steps > 1e15) /* as gm_integrator_integrate: a count past it is an overflow */
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                   "%zu steps requested: more than 1e15", n_steps);
   return run_steps(it, n_steps, h, it->t + (double)n_steps * h);
 }
 
@@ -443,6 +446,51 @@ gm_status gm_integrator_resume(gm_integrator *it) {
                    "no run to resume: load a checkpoint taken during gm_integrator_run or "
                    "gm_integrator_integrate");
   return run_steps_from(it, &it->run, it->step_index - it->run_start);
+}
+
+gm_status gm_integrator_extend_run(gm_integrator *it, size_t n_steps, double t_end, double h) {
+  if (it == NULL) return GM_EINVAL;
+  if (it->run_kind != 1 || it->step_index < it->run_start ||
+      it->step_index - it->run_start > it->run.n_steps)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                   "no run to extend: load a checkpoint taken during or at the end of "
+                   "gm_integrator_run or gm_integrator_integrate");
+  const size_t k = it->step_index - it->run_start;
+  const double t0 = it->run.t0;
+  gm_status st = check_step(it, h);
+  if (st != GM_OK) return st;
+  /* the run gm_integrator_run / _integrate would have made from the same start */
+  gm_run run;
+  if (n_steps > 0) {
+    if ((double)n_steps > 1e15)
+      return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                     "%zu steps requested: more than 1e15", n_steps);
+    run = (gm_run){t0, h, t0 + (double)n_steps * h, n_steps};
+  } else {
+    if (!isfinite(t_end) || !(t_end > t0))
+      return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                     "final time %g must be finite and after the run's start %g", t_end, t0);
+    const double ratio = (t_end - t0) / h;
+    double n_real = ceil(ratio - 1e-9 * fmax(1.0, ratio)); /* as gm_integrator_integrate */
+    if (n_real < 1.0) n_real = 1.0;
+    if (n_real > 1e15)
+      return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                     "%.3g steps requested: step size too small for this interval", n_real);
+    run = (gm_run){t0, (t_end - t0) / n_real, t_end, (size_t)n_real};
+  }
+  /* the steps taken so far are those of the new run only with the same step, bitwise */
+  if (run.h != it->run.h)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                   "the run to t = %.17g has the step %.17g, the saved run %.17g: the steps "
+                   "taken are not those of the new run (give the same --dt)",
+                   run.t_last, run.h, it->run.h);
+  if (k > run.n_steps)
+    return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL,
+                   "the saved run is at step %zu (t = %.17g), past the end of a run of %zu "
+                   "steps to t = %.17g", k, it->t, run.n_steps, run.t_last);
+  it->run = run;
+  it->t = gm_run_time(&run, k); /* a finished run stood at its t_last: the new grid's time */
+  return GM_OK;
 }
 
 double gm_integrator_run_end_time(const gm_integrator *it) {

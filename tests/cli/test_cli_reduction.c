@@ -26,7 +26,9 @@ Test(reduction, dsp_rsprk_agrees_with_classical_sprk) {
   cr_assert_not_null(p, "%s", r.out);
   double r1 = NAN, r2 = NAN, phi = NAN, e = NAN;
   cr_assert_eq(sscanf(p, "classical SPRK: r1 %lf, r2 %lf, phi %lf, E %lf", &r1, &r2, &phi, &e), 4);
-  cr_expect(r1 < 1e-10 && r2 < 1e-10 && phi < 1e-9 && e < 1e-12, "%s", p);
+  /* measured r1 5.33e-14, r2 4.81e-14, phi 5.18e-13, E 2.28e-15: the two are the same scheme
+   * in other coordinates, so the floor is the round-off of 300 steps; bounds ~5x */
+  cr_expect(r1 < 3e-13 && r2 < 3e-13 && phi < 3e-12 && e < 1.2e-14, "%s", p);
   char *csv = read_file(path_in_tmp("dsp.csv"));
   cr_assert_not_null(csv);
   cr_expect_eq(count_lines(csv), 302); /* header + 301 samples */
@@ -41,7 +43,8 @@ Test(reduction, j2_discrete_routh_matches_rsprk) {
   cr_assert_not_null(p, "%s", r.out);
   double a = NAN, b = NAN;
   cr_assert_eq(sscanf(p, "along the run: %lf (J2 = 0), %lf", &a, &b), 2);
-  cr_expect(a < 1e-11 && b < 1e-11, "%s", p);
+  /* measured 1.24e-14 for both (the same equations solved two ways: round-off) */
+  cr_expect(a < 6e-14 && b < 6e-14, "%s", p);
   run_output_free(&r);
 }
 

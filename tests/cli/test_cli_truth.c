@@ -384,9 +384,18 @@ Test(truth, restart_rejects_bad_checkpoints) {
   cr_expect_eq(r.status, 2);
   cr_expect(strstr(r.err, "'verlet'") != NULL, "%s", r.err);
   run_output_free(&r);
+  /* a later end with the same step continues the run (issue 26); another step or an end
+   * before the saved step does not */
   r = run_cli("run kepler --steps 200 --restart ck");
+  cr_expect_eq(r.status, 0, "%s", r.err);
+  run_output_free(&r);
+  r = run_cli("run kepler --steps 200 --dt 0.02 --restart ck");
   cr_expect_eq(r.status, 2);
-  cr_expect(strstr(r.err, "ends at") != NULL, "%s", r.err);
+  cr_expect(strstr(r.err, "has the step 0.02, the saved run 0.01") != NULL, "%s", r.err);
+  run_output_free(&r);
+  r = run_cli("run kepler --steps 50 --restart ck");
+  cr_expect_eq(r.status, 2);
+  cr_expect(strstr(r.err, "the saved run is at step 100") != NULL, "%s", r.err);
   run_output_free(&r);
   r = run_shell("head -c 100 ck > cut && GM run kepler --steps 100 --restart cut");
   cr_expect_eq(r.status, 2);

@@ -1,10 +1,15 @@
 /* The documentation tells the truth: the tables in README.md and docs/ are what the program
  * generates from the registries, the README's C example is the compiled example, and that
- * example runs and prints a small energy error. */
+ * example runs and prints a small energy error; and every code block of a page in docs/ marked
+ * <!-- quick-check --> is re-run: each of its `$ geomint ...` commands runs, and every other
+ * line of the block (but "...") is a line of their output, token by token, where a `~` in the
+ * doc stands for a token that is not compared (a timing, given with its date and load in the
+ * text next to the block). */
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
 
 static char *read_all(FILE *f) {
   size_t cap = 1 << 16, len = 0;
@@ -78,4 +83,96 @@ Test(docs, readme_example_is_the_compiled_example_and_runs) {
   free(readme);
   free(example);
   free(out);
+}
+
+/* ---- quick examples re-run ------------------------------------------------------------- */
+
+/* Does the doc line equal the output line token by token (`~` matches any token)? */
+static int tokens_match(const char *doc, const char *out) {
+  for (;;) {
+    while (*doc == ' ' || *doc == '\t') ++doc;
+    while (*out == ' ' || *out == '\t') ++out;
+    if (*doc == '\0' || *out == '\0') return *doc == '\0' && *out == '\0';
+    size_t nd = strcspn(doc, " \t"), no = strcspn(out, " \t");
+    if (!(nd == 1 && doc[0] == '~') && (nd != no || strncmp(doc, out, nd) != 0)) return 0;
+    doc += nd, out += no;
+  }
+}
+
+static int output_has_line(char *out, const char *doc_line) {
+  for (char *line = out; line != NULL && *line != '\0';) {
+    char *nl = strchr(line, '\n');
+    if (nl != NULL) *nl = '\0';
+    const int ok = tokens_match(doc_line, line);
+    if (nl != NULL) *nl = '\n';
+    if (ok) return 1;
+    line = nl != NULL ? nl + 1 : NULL;
+  }
+  return 0;
+}
+
+/* Check every marked block of one page; returns how many blocks were checked. */
+static size_t check_quick_blocks(const char *page) {
+  char path[1024];
+  snprintf(path, sizeof path, "%s/docs/%s", GM_SOURCE_DIR, page);
+  char *text = read_file(path);
+  size_t checked = 0;
+  static const char mark[] = "<!-- quick-check -->\n```";
+  for (char *at = strstr(text, mark); at != NULL; at = strstr(at + 1, mark)) {
+    char *body = strchr(at + strlen(mark), '\n');
+    cr_assert_not_null(body, "%s: unterminated block", page);
+    ++body;
+    char *end = strstr(body, "\n```");
+    cr_assert_not_null(end, "%s: unterminated block", page);
+    *end = '\0';
+    /* run the commands first, in the build directory's parent: their outputs together */
+    size_t cap = 1 << 20, len = 0;
+    char *out = calloc(cap, 1);
+    cr_assert_not_null(out);
+    for (char *line = body; line != NULL && *line != '\0';) {
+      char *nl = strchr(line, '\n');
+      if (nl != NULL) *nl = '\0';
+      if (strncmp(line, "$ geomint ", 10) == 0) {
+        char command[2048];
+        snprintf(command, sizeof command, "cd /tmp && %s %s 2>&1", GM_CLI_PATH, line + 10);
+        char *got = command_output(command);
+        size_t n = strlen(got);
+        cr_assert_lt(len + n + 1, cap, "%s: output too long", page);
+        memcpy(out + len, got, n + 1);
+        len += n;
+        free(got);
+      }
+      if (nl != NULL) *nl = '\n';
+      line = nl != NULL ? nl + 1 : NULL;
+    }
+    cr_assert_gt(len, 0, "%s: a quick-check block without a `$ geomint` command", page);
+    for (char *line = body; line != NULL && *line != '\0';) {
+      char *nl = strchr(line, '\n');
+      if (nl != NULL) *nl = '\0';
+      const char *t = line + strspn(line, " \t");
+      if (strncmp(line, "$ ", 2) != 0 && strcmp(t, "...") != 0 && *t != '\0')
+        cr_expect(output_has_line(out, line), "%s: the line\n%s\nis not in the program's "
+                  "output:\n%s", page, line, out);
+      if (nl != NULL) *nl = '\n';
+      line = nl != NULL ? nl + 1 : NULL;
+    }
+    free(out);
+    *end = '\n';
+    ++checked;
+  }
+  free(text);
+  return checked;
+}
+
+Test(docs, quick_examples_are_what_the_program_prints, .timeout = 300) {
+  DIR *d = opendir(GM_SOURCE_DIR "/docs");
+  cr_assert_not_null(d);
+  size_t blocks = 0;
+  struct dirent *e;
+  while ((e = readdir(d)) != NULL) {
+    const size_t n = strlen(e->d_name);
+    if (n > 3 && strcmp(e->d_name + n - 3, ".md") == 0) blocks += check_quick_blocks(e->d_name);
+  }
+  closedir(d);
+  cr_expect_geq(blocks, 3, "only %zu quick-check blocks in docs/", blocks); /* cli.md 2, pde.md 1 */
 }

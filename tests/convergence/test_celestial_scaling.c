@@ -114,11 +114,14 @@ static void check_planets(int planets) {
     cr_expect(fabs(p - 4) <= 0.3, "planets=%d sabac-2-jacobi: h^%.2f", planets, p);
     const char *saba[] = {"saba-2-jacobi", "saba-3-jacobi", "saba-4-jacobi"};
     const char *sabac[] = {"sabac-2-jacobi", "sabac-3-jacobi", "sabac-4-jacobi"};
+    /* measured gains (2 and 5 planets): sabac-2 1380 and 1233; sabac-3 37488 and 37642,
+     * sabac-4 32644 and 53034, whose errors (8e-15 .. 8e-16) are at round-off: the floor */
+    const double min_gain[3] = {800, 2e4, 2e4};
     for (size_t k = 0; k < 3; ++k) {
       double a = error(&e0, saba[k], 20.48), b = error(&e0, sabac[k], 20.48);
       printf("planets=%d %s: error %.2e at h = 20.48, eps = 1 (%s: %.2e, %.0f times more)\n",
              planets, sabac[k], b, saba[k], a, a / b);
-      cr_expect_geq(a / b, 100, "planets=%d %s: only %.1f times better than %s", planets,
+      cr_expect_geq(a / b, min_gain[k], "planets=%d %s: only %.1f times better than %s", planets,
                     sabac[k], a / b, saba[k]);
     }
   }
@@ -127,12 +130,15 @@ static void check_planets(int planets) {
    * exponents sit too close to round-off here to be fitted (docs/celestial.md) */
   const char *blanes[] = {"aba-10-4", "aba-8-6-4", "aba-10-6-4"};
   const double saba4 = error(&e0, "saba-4-jacobi", 102.4);
+  /* measured saba-4 / row (2 and 5 planets): aba-10-4 3.5e4 and 3.7e4, aba-8-6-4 4.5e5 and
+   * 4.6e5, aba-10-6-4 8.1e5 and 6.5e5; bounds ~0.55x the smaller */
+  const double min_gain[3] = {2e4, 2.5e5, 3.5e5};
   for (size_t k = 0; k < 3; ++k) {
     double e = error(&e0, blanes[k], 102.4);
     printf("planets=%d %s: error %.2e at h = 102.4, eps = 1 (saba-4-jacobi: %.2e)\n", planets,
            blanes[k], e, saba4);
-    cr_expect_leq(e, saba4 / 1000, "planets=%d %s: %.3g against saba-4 %.3g", planets, blanes[k],
-                  e, saba4);
+    cr_expect_leq(e, saba4 / min_gain[k], "planets=%d %s: %.3g against saba-4 %.3g", planets,
+                  blanes[k], e, saba4);
   }
   system_t *all[] = {&e0, &e1, &e2, &e3, &e4};
   for (size_t k = 0; k < 5; ++k) gm_model_free(all[k]->model);

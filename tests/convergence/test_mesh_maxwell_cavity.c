@@ -90,10 +90,32 @@ static size_t cavity(int dim, size_t nx, double t_end, double f_lo, double f_hi,
   return kept;
 }
 
+/* Each mode that both meshes resolve, as measured (rate between the coarsest and finest mesh,
+ * relative error on the finest); the test holds every one to rate − 0.3 and 1.5 × the error.
+ * NAN rate: excluded from the rate, with the reason:
+ *   2-D f = 0.71429, the (0, 1) mode, varies along y only: the meshes are not nested and their
+ *   row count is rounded to keep the triangles near equilateral, so the triangles' aspect in y
+ *   changes from mesh to mesh and its error (1.49e-3, 1.44e-3, 2.43e-3 on nx 10, 20, 40) follows
+ *   that distortion, not h.
+ *   3-D f = 1.15545 (1, 1, 1) and f = 1.44398: their errors grow from nx 5 to 10 (7.53e-4 →
+ *   3.95e-3, 3.26e-3 → 4.36e-3); two levels of a mesh this coarse cannot show why (a
+ *   neighbouring discrete mode can be the nearest peak on nx 5): not understood, so only their
+ *   finest error is held. */
+typedef struct expected_mode {
+  int dim;
+  double f, rate, finest;
+} expected_mode;
+
+static const expected_mode expected[] = {
+    {2, 0.50000, 3.60, 3.89e-6},  {2, 0.71429, NAN, 2.43e-3},  {2, 0.87190, 0.88, 6.44e-4},
+    {2, 1.00000, 1.38, 1.67e-4},  {2, 1.22890, 2.01, 2.39e-4},  {2, 1.42857, 2.07, 3.60e-4},
+    {2, 1.50000, 1.80, 2.51e-4},  {2, 1.74379, 2.01, 5.15e-4},  {3, 0.97183, 2.10, 1.36e-3},
+    {3, 1.15545, NAN, 3.95e-3},   {3, 1.30171, 2.54, 6.38e-4},  {3, 1.44398, NAN, 4.36e-3}};
+
 /* Errors of the resonances below the 10th that both the coarsest and the finest mesh resolve;
  * rates printed. Meshes are not nested (rows are rounded to keep the triangles near
- * equilateral), so single modes can converge erratically: the assertion is on the best-resolved
- * mode's rate and on every tracked error at the finest level. */
+ * equilateral), so single modes can converge erratically: every tracked mode is held to its
+ * measured rate and finest error (expected[] above says which are excluded from the rate). */
 static void check(int dim, const size_t *nx, size_t levels, double t_end, double tol) {
   double fa[MAX_ANALYTIC * 4];
   const size_t na = analytic(dim, fa);
@@ -116,20 +138,28 @@ static void check(int dim, const size_t *nx, size_t levels, double t_end, double
     fprintf(stderr, "\n");
   }
   size_t tracked = 0;
-  double best_rate = -INFINITY;
   for (size_t j = 0; j < 10; ++j) {
     if (isnan(err[j][0]) || isnan(err[j][levels - 1])) continue;
     ++tracked;
     const double rate = log(err[j][0] / err[j][levels - 1]) /
                         log((double)nx[levels - 1] / (double)nx[0]);
-    best_rate = fmax(best_rate, rate);
     fprintf(stderr, "mesh_maxwell cavity %d-D f = %.5f: relative error %.2e (nx %zu) -> %.2e "
             "(nx %zu), rate %.2f\n", dim, fa[j], err[j][0], nx[0], err[j][levels - 1],
             nx[levels - 1], rate);
     cr_expect_lt(err[j][levels - 1], tol);
+    /* every tracked mode against its measured rate and finest error */
+    const expected_mode *e = NULL;
+    for (size_t k = 0; k < sizeof expected / sizeof *expected; ++k)
+      if (expected[k].dim == dim && fabs(expected[k].f - fa[j]) < 1e-4) e = &expected[k];
+    cr_expect_not_null(e, "%d-D mode f = %.5f is tracked but has no measured row", dim, fa[j]);
+    if (e == NULL) continue;
+    cr_expect_lt(err[j][levels - 1], 1.5 * e->finest, "%d-D f = %.5f: finest error %.3e",
+                 dim, fa[j], err[j][levels - 1]);
+    if (!isnan(e->rate))
+      cr_expect_gt(rate, e->rate - 0.3, "%d-D f = %.5f: rate %.2f (measured %.2f)", dim, fa[j],
+                   rate, e->rate);
   }
-  cr_assert_geq(tracked, 3, "only %zu resonances resolved on both meshes", tracked);
-  cr_expect_gt(best_rate, 1.8, "best rate %.2f", best_rate);
+  cr_assert_geq(tracked, dim == 2 ? 8 : 4, "only %zu resonances resolved on both meshes", tracked);
 }
 
 Test(mesh_maxwell_cavity, te_2d) {

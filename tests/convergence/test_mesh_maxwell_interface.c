@@ -76,10 +76,18 @@ Test(mesh_maxwell_interface, whitney_and_diagonal_two_materials, .timeout = 300)
           "%.2e (rates %.2f %.2f), diagonal %.2e %.2e %.2e (rates %.2f %.2f)\n",
           interface_omega() / (2 * PI), ew[0], ew[1], ew[2], log2(ew[0] / ew[1]),
           log2(ew[1] / ew[2]), ed[0], ed[1], ed[2], log2(ed[0] / ed[1]), log2(ed[1] / ed[2]));
+  /* measured: Whitney 2.91e-2 1.50e-2 7.65e-3 (rates 0.96 0.97), diagonal 2.96e-2 1.53e-2
+   * 7.74e-3 (rates 0.95 0.98): first order, as for an interface that cuts the cells (the
+   * permittivity jump is not resolved by the mesh). Each halving must gain a rate >= 0.85, and
+   * the errors stay within 1.2x of the measured ones. */
+  const double measured_w[3] = {2.91e-2, 1.50e-2, 7.65e-3}, measured_d[3] = {2.96e-2, 1.53e-2,
+                                                                            7.74e-3};
   for (int i = 0; i < 3; ++i) {
-    cr_assert_lt(ew[i], 0.05);
-    cr_assert_lt(ed[i], 0.05);
+    cr_assert_lt(ew[i], 1.2 * measured_w[i], "Whitney level %d: %.3e", i, ew[i]);
+    cr_assert_lt(ed[i], 1.2 * measured_d[i], "diagonal level %d: %.3e", i, ed[i]);
   }
-  cr_assert_lt(ew[2], 0.5 * ew[0]);
-  cr_assert_lt(ed[2], 0.5 * ed[0]);
+  for (int i = 0; i < 2; ++i) {
+    cr_assert_gt(log2(ew[i] / ew[i + 1]), 0.85, "Whitney rate %d: %.2f", i, log2(ew[i] / ew[i + 1]));
+    cr_assert_gt(log2(ed[i] / ed[i + 1]), 0.85, "diagonal rate %d: %.2f", i, log2(ed[i] / ed[i + 1]));
+  }
 }

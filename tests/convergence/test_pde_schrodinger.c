@@ -66,9 +66,11 @@ Test(pde_schrodinger, invariants) {
   cr_expect_leq(dq, 1e-12, "VI charge %.3e", dq);
   cr_expect_leq(dnorm_vn, 1e-13, "normalised VI norm %.3e", dnorm_vn);
   cr_expect_leq(dnorm_ss, 1e-12, "split-step norm %.3e", dnorm_ss);
-  cr_expect_leq(dnorm_vi, 1e-6, "VI norm oscillation %.3e", dnorm_vi);
-  cr_expect_leq(de_vi, 1e-6, "VI energy %.3e", de_vi);
-  cr_expect_leq(de_ss, 1e-3, "split-step energy %.3e", de_ss);
+  /* measured: VI |psi|^2 oscillation 9.62e-10 and energy 1.21e-9 (bounded O(dt^2) oscillations
+   * of a symplectic scheme, not drift), split-step energy 2.00e-5 (O(dt^2)); bounds ~5x/3x */
+  cr_expect_leq(dnorm_vi, 5e-9, "VI norm oscillation %.3e", dnorm_vi);
+  cr_expect_leq(de_vi, 6e-9, "VI energy %.3e", de_vi);
+  cr_expect_leq(de_ss, 6e-5, "split-step energy %.3e", de_ss);
   gm_schrodinger_free(vi);
   gm_schrodinger_free(ss);
   gm_schrodinger_free(vn);
@@ -99,7 +101,8 @@ Test(pde_schrodinger, eigenvalues_spectral_in_n) {
                         NULL) - sch_E(SCH_HARMONIC, 2 * k + 1));
     cr_log_info("harmonic E_%d, VI (dt 0.01, T 10), N = 16..48: %.2e %.2e %.2e %.2e %.2e",
                 2 * k + 1, e[0], e[1], e[2], e[3], e[4]);
-    cr_expect_leq(e[4], 1e-11, "harmonic finest %.3e", e[4]);
+    /* measured 1.11e-15 (E_1) and 2.14e-13 (E_3): the round-off floor of the eigenvalue */
+    cr_expect_leq(e[4], 1e-12, "harmonic finest %.3e", e[4]);
     cr_expect_geq(e[0] / e[2], 1e4, "spectral decay %.3e -> %.3e", e[0], e[2]);
   }
   for (int k = 0; k < 2; k++) {
@@ -112,7 +115,8 @@ Test(pde_schrodinger, eigenvalues_spectral_in_n) {
     cr_log_info("Poschl-Teller E_%d (box %g), VI (dt 0.005, T 10), N = %g x (32..192): "
                 "%.2e %.2e %.2e %.2e %.2e",
                 k, L, L / PT_L, e[0], e[1], e[2], e[3], e[4]);
-    cr_expect_leq(e[4], 1e-10, "PT finest %.3e", e[4]);
+    /* measured 1.78e-15 (E_0) and 1.97e-14 (E_1): the round-off floor */
+    cr_expect_leq(e[4], 1e-13, "PT finest %.3e", e[4]);
     cr_expect_geq(e[0] / e[3], 1e5, "spectral decay %.3e -> %.3e", e[0], e[3]);
   }
 }

@@ -77,12 +77,15 @@ Test(mesh_maxwell, leapfrog_2d_invariants) {
   fprintf(stderr, "mesh_maxwell 2-D leapfrog, 3000 steps: modified energy drift %.2e, plain "
           "energy deviation %.3f; Gauss drift %.2e (no source) %.2e (current), |Σρ| %.2e\n",
           a.leap_drift, a.plain_dev, a.gauss_drift, b.gauss_drift, b.charge);
-  cr_assert_lt(a.leap_drift, 1e-12);
+  /* measured: modified energy drift 2.54e-15, Gauss drift 1.85e-13 / 3.66e-13 (round-off of
+   * 3000 steps), plain deviation 1.776 */
+  cr_assert_lt(a.leap_drift, 2e-14);
   /* grid-scale random fields at 0.9 of the CFL limit: the plain energy oscillates around the
-   * modified one by up to the factor 1/(1 − 0.9) (bounded, never growing) */
-  cr_assert_lt(a.plain_dev, 9.0);
+   * modified one by up to the factor 1/(1 − 0.9) (bounded, never growing); these fields reach
+   * 1.776 of it, held at 2.5 so that growth shows */
+  cr_assert_lt(a.plain_dev, 2.5);
   cr_assert_lt(a.gauss_drift, 1e-12);
-  cr_assert_lt(b.gauss_drift, 1e-12);
+  cr_assert_lt(b.gauss_drift, 2e-12);
   cr_assert_lt(b.charge, 1e-13);
   mm_fixture_free(&f);
 }
@@ -94,12 +97,14 @@ Test(mesh_maxwell, leapfrog_3d_whitney_invariants) {
   fprintf(stderr, "mesh_maxwell 3-D leapfrog (Whitney star), 400 steps: modified energy drift "
           "%.2e, plain deviation %.3f; div B %.2e / %.2e; Gauss drift %.2e / %.2e, |Σρ| %.2e\n",
           a.leap_drift, a.plain_dev, a.divb, b.divb, a.gauss_drift, b.gauss_drift, b.charge);
-  cr_assert_lt(a.leap_drift, 1e-11);
-  cr_assert_lt(a.plain_dev, 9.0);
-  cr_assert_lt(a.divb, 1e-12);
-  cr_assert_lt(b.divb, 1e-12);
-  cr_assert_lt(a.gauss_drift, 1e-11);
-  cr_assert_lt(b.gauss_drift, 1e-11);
+  /* measured: modified energy drift 1.68e-15, plain deviation 1.028, div B 7.55e-15 /
+   * 7.77e-15, Gauss drift 6.70e-15 / 8.08e-15 (round-off of 400 steps); bounds ~10x */
+  cr_assert_lt(a.leap_drift, 2e-14);
+  cr_assert_lt(a.plain_dev, 1.5);
+  cr_assert_lt(a.divb, 8e-14);
+  cr_assert_lt(b.divb, 8e-14);
+  cr_assert_lt(a.gauss_drift, 8e-14);
+  cr_assert_lt(b.gauss_drift, 8e-14);
   cr_assert_lt(b.charge, 1e-13);
   mm_fixture_free(&f);
 }

@@ -136,10 +136,12 @@ Test(phases, montgomery_rigid_body_phase) {
     cr_assert_eq(gm_rigid_body_phase(inertia, cases[k], 40000, NULL, NULL, &lam2, NULL), GM_OK);
     cr_expect(fabs(lambda - lam2) < 1e-11, "solid-angle quadrature converged: %.3g", lambda - lam2);
     const double closed = wrap(dyn - lambda);
+    /* the error at T/256 of each row and case, measured: lgvi 1.43e-3 and 3.28e-3,
+     * lgvi-galerkin-2 9.13e-9 and 3.62e-10 (its order 4 at T/64..T/256); bounds 1.5x */
     static const struct {
       const char *row;
-      double order;
-    } rows[] = {{"lgvi", 2}, {"lgvi-galerkin-2", 4}};
+      double order, bound[2];
+    } rows[] = {{"lgvi", 2, {2.2e-3, 5e-3}}, {"lgvi-galerkin-2", 4, {1.4e-8, 5.5e-10}}};
     for (int r = 0; r < 2; ++r) {
       double err[3], got = 0;
       for (int l = 0; l < 3; ++l) {
@@ -153,7 +155,7 @@ Test(phases, montgomery_rigid_body_phase) {
                   cases[k][0], cases[k][1], cases[k][2], period, dyn, lambda, closed, rows[r].row, got,
                   err[0], err[1], err[2], q, fabs(wrap(got - wrap(dyn + lambda))));
       cr_expect(fabs(q - rows[r].order) < 0.3, "%s phase order %.3f", rows[r].row, q);
-      cr_expect_lt(err[2], 5e-3, "%s phase error %.3g", rows[r].row, err[2]);
+      cr_expect_lt(err[2], rows[r].bound[k], "%s phase error %.3g", rows[r].row, err[2]);
     }
   }
   gm_error e;

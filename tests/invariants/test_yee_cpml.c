@@ -75,8 +75,10 @@ Test(yee_cpml, reflection_2d_below_80_db) {
   const double r10 = reflection_db(GM_YEE_2D_TM, 40, 10, 1.0, 400, 130);
   const double r20 = reflection_db(GM_YEE_2D_TM, 40, 20, 1.0, 400, 130);
   cr_log_info("2-D TM CPML reflection: 10 cells %.1f dB, 20 cells %.1f dB", r10, r20);
-  cr_assert_lt(r20, -80.0);
-  cr_assert_lt(r10, r20 + 60.0, "sanity");
+  /* measured -84.5 dB (10 cells, the scene files' default thickness) and -105.9 dB (20); the
+   * floor is the layer's discretisation reflection, which thickness lowers by ~2 dB per cell */
+  cr_assert_lt(r10, -82.0, "default 10-cell CPML: %.1f dB", r10);
+  cr_assert_lt(r20, -103.0, "20-cell CPML: %.1f dB", r20);
 }
 
 Test(yee_cpml, reflection_3d) {
@@ -84,7 +86,7 @@ Test(yee_cpml, reflection_3d) {
    * delay 18) */
   const double r = reflection_db(GM_YEE_3D, 20, 12, 1.0, 160, 30);
   cr_log_info("3-D CPML reflection: 12 cells %.1f dB", r);
-  cr_assert_lt(r, -70.0);
+  cr_assert_lt(r, -92.0, "measured -94.7 dB"); /* measured -94.7 dB */
 }
 
 /* TF/SF: outside the total-field box the field is the (zero) scattered field to round-off;
