@@ -130,3 +130,50 @@ Test(pde_invariant, heat_ftcs_is_scaling_invariant) {
   cr_assert_leq(rel_diff(&a_run, &std_ref), 1e-12);
   cr_assert_leq(rel_diff(&b_run, &std_ref), 1e-12);
 }
+
+/* The standard FTCS's loss under the projection and the boost does not shrink with the mesh
+ * (k ∝ h², d = νk/h² fixed): the layers of the transformed mesh shift (σ ≠ 0) and a scheme
+ * that only sees k and h takes them for upright ones — an O(1) inconsistency, not O(h). */
+static double std_mapped_diff(size_t s, const double *a) {
+  const gm_inv_front f = {1.0, 0.0, -0.3, 0.05};
+  size_t n = 100 * s + 1;
+  gm_inv_run_spec sp = gm_inv_run_spec_defaults();
+  cr_assert_eq(gm_inv_scheme_find("ftcs", &sp.scheme), GM_OK);
+  sp.nu = f.nu;
+  sp.n = n;
+  sp.x_left = -1.0;
+  sp.h = 0.02 / (double)s;
+  sp.t0 = 0.2;
+  sp.k = 0.002 / (double)(s * s);
+  sp.n_steps = 100 * s * s;
+  sp.exact = gm_inv_burgers_front;
+  sp.exact_ctx = &f;
+  sp.check_stability = 0;
+  double *x0 = malloc(4 * n * sizeof *x0), *u0 = x0 + n, *x1 = x0 + 2 * n, *u1 = x0 + 3 * n, t;
+  gm_error err = {{0}};
+  cr_assert_eq(gm_inv_run(&sp, &t, x0, u0, NULL, &err), GM_OK, "%s", err.message);
+  sp.transform_group = &gm_inv_burgers_g0;
+  sp.transform_a = a;
+  cr_assert_eq(gm_inv_run(&sp, &t, x1, u1, NULL, &err), GM_OK, "%s", err.message);
+  double d = 0.0, m = 0.0;
+  for (size_t j = 0; j < n; j++) {
+    gm_inv_point p;
+    cr_assert_eq(gm_inv_burgers_g0.act_inverse(a, (gm_inv_point){t, x1[j], u1[j]}, &p, NULL), 0);
+    d = fmax(d, fabs(p.u - u0[j]));
+    m = fmax(m, fabs(u0[j]));
+  }
+  free(x0);
+  return d / m;
+}
+
+Test(pde_invariant, standard_loss_is_order_one) {
+  const double proj[4] = {0, 0, 0.2, 0}, boost[4] = {0, 0, 0, 0.5};
+  /* measured, h = 0.02, 0.01, 0.005: projection 0.01695, 0.01698, 0.01700; boost 0.2454,
+   * 0.2452, 0.2450 */
+  for (int g = 0; g < 2; g++) {
+    double d1 = std_mapped_diff(1, g ? boost : proj), d4 = std_mapped_diff(4, g ? boost : proj);
+    cr_log_info("%s: h = 0.02 %.4e, h = 0.005 %.4e", g ? "boost" : "projection", d1, d4);
+    cr_assert(d4 >= 0.9 * d1 && d4 <= 1.1 * d1, "%s: %.4e -> %.4e", g ? "boost" : "projection",
+              d1, d4);
+  }
+}
