@@ -163,9 +163,10 @@ gm_status gm_inv_consistency_order(const gm_inv_scheme *scheme, const gm_inv_gro
 
 /* ---- the seed's experiments (docs/pde.md) --------------------------------------------------- */
 /* B12, Galilean consistency: the front (u_L, u_R, x0) = (½, −½, 0) on [−2, 2] × [0, 1],
- * ν = 5e-3, h = 2e-2, k = ½h = 1e-2 (the seed's CFL ½ read as k/h); for each λ the mesh and the data are boosted
- * (x, u) ↦ (x + λt, u + λ) — each step the frame moves by λk — the run is made there, and the
- * last layer is mapped back by the inverse boost. */
+ * ν = 5e-3, h = 2e-2, k = ½h = 1e-2 (the seed's CFL ½ read as k/h); for each λ the mesh and
+ * the data are boosted, (x, u) ↦ (x + λt, u + λ) — each step the frame moves by λk — the run
+ * is made there (stability check off), and the last layer is mapped back by the inverse
+ * boost. */
 #define GM_INV_B12_N_LAMBDA 4
 #define GM_INV_B12_N_SCHEMES 6 /* ftcs, lax-wendroff, crank-nicolson × {standard, invariant} */
 typedef struct gm_inv_b12_row {

@@ -1,6 +1,7 @@
 /* Invariantization by a moving frame and the layer-marching driver (geomint/pde_invariant.h).
- * Ñ(m) = N(ρ(m)·m) (Kim, BIT 47 (2007) §3; Chhay & Hamdouni, C. R. Mécanique 338 (2010) eq. 7;
- * seed 004 "Invariant integrators"): nothing here knows an equation. */
+ * Ñ(m) = N(ρ(m)·m) (seed 004 "Invariant integrators", notes/003-004 §2.4; the moving frames of
+ * Fels & Olver, Acta Appl. Math. 55 (1999) 127, as used by Kim, BIT 47 (2007) and Chhay &
+ * Hamdouni, C. R. Mécanique 338 (2010)): nothing here knows an equation. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -17,7 +17,8 @@ static double ftcs_residual(const gm_inv_stencil *m, double nu, double dn[3]) {
   double k = m->next[1].t - m->old[1].t;
   dn[0] = dn[2] = 0.0;
   dn[1] = 1.0 / k;
-  return (m->next[1].u - m->old[1].u) / k + m->old[1].u * gm_inv_d1(m->old) - nu * gm_inv_d2(m->old);
+  return (m->next[1].u - m->old[1].u) / k + m->old[1].u * gm_inv_d1(m->old) -
+         nu * gm_inv_d2(m->old);
 }
 
 /* FTCS for the frozen-coefficient u_t + c u_x = ν u_xx is stable iff C² ≤ 2d ≤ 1, C = ck/h,
@@ -55,7 +56,7 @@ static double lw_bound(double h, double umax, double nu) {
 
 /* Crank–Nicolson: the trapezoidal average of the FTCS space operator on both layers,
  * (u^{n+1}_j − uⁿ_j)/k + ½[u D₁u − ν D₂u]ⁿ + ½[u D₁u − ν D₂u]^{n+1} = 0 (Crank & Nicolson, Proc.
- * Camb. Phil. Soc. 43 (1947) 50; the form of Chhay et al. 2011 §5). */
+ * Camb. Phil. Soc. 43 (1947) 50; one of the three schemes of the seed's Test 1). */
 static double cn_residual(const gm_inv_stencil *m, double nu, double dn[3]) {
   const gm_inv_point *o = m->old, *q = m->next;
   double k = q[1].t - o[1].t;
@@ -82,7 +83,7 @@ const gm_inv_scheme gm_inv_lax_wendroff = {
     "max|u|^2 k^2 + 2 nu k <= h^2", "Lax & Wendroff 1960, viscous term centred"};
 const gm_inv_scheme gm_inv_crank_nicolson = {
     "crank-nicolson", "burgers", 0, cn_residual, cn_bound, "unconditionally stable",
-    "Crank & Nicolson 1947; Chhay, Hoarau, Hamdouni & Sagaut 2011 §5"};
+    "Crank & Nicolson 1947; seed 004 Test 1"};
 
 /* ---- the group G₀ and its frame ------------------------------------------------------------- */
 

@@ -13,7 +13,8 @@ typedef struct run_out {
   double t, x[N], u[N];
 } run_out;
 
-/* One run of a front (ν = 0.05, width 0.2) on [−1, 1], h = 0.02, k = 0.002, 100 steps (FTCS: d = νk/h² = 0.25). */
+/* One run of a front (ν = 0.05, width 0.2) on [−1, 1], h = 0.02, k = 0.002, 100 steps (FTCS:
+ * d = νk/h² = 0.25). */
 static void run(const gm_inv_scheme *s, const gm_inv_group *frame, const gm_inv_group *tg,
                 const double *a, gm_inv_solution_fn exact, const void *ctx, double nu,
                 run_out *o) {

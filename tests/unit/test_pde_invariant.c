@@ -73,7 +73,8 @@ Test(pde_invariant, bad_input) {
   s = spec("heat-ftcs", &gm_inv_burgers_g0);
   expect(&s, GM_EINVAL, "group burgers-g0 acts on the burgers equation, scheme heat-ftcs");
   /* The projection frame needs 1 + k D₁u > 0: the front's slope is −Δ²/(8ν) = −25 at its
-   * centre, D₁u = −19.0 at x = 0 on h = 0.02, so k = 0.06 (stability check off) has no frame there. */
+   * centre, D₁u = −19.0 at x = 0 on h = 0.02, so k = 0.06 (stability check off) has no frame
+   * there. */
   s = spec("ftcs", &gm_inv_burgers_g0);
   s.k = 0.06;
   s.check_stability = 0;
