@@ -15,7 +15,8 @@
 #include <stddef.h>
 
 #include "geomint/core.h"
-#include "geomint/pde_spectral.h" /* Schrödinger, spectral Hodge star, tent-function VI */
+#include "geomint/pde_invariant.h" /* invariant (moving-frame) schemes for Burgers, heat */
+#include "geomint/pde_spectral.h"  /* Schrödinger, spectral Hodge star, tent-function VI */
 
 #ifdef __cplusplus
 extern "C" {

@@ -105,3 +105,18 @@ Test(cli_pde, run_kdv_nls_and_vtk) {
   cr_assert(strstr(r.out, "charge 1.99287414843") != NULL, "%s", r.out);
   run_output_free(&r);
 }
+
+/* pde run projects gauss-prk's sampled initial data (gm_pde_gauss_project) unless
+ * --no-project; measured max |psi - exact| 1.872e-3 projected, 1.891e-3 as sampled. */
+Test(cli_pde, run_gauss_prk_projects_initial_data) {
+  run_output r = run_cli("pde run nls --scheme gauss-prk");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_assert(strstr(r.out, "initial data projected") != NULL, "%s", r.out);
+  cr_assert(strstr(r.out, "max |psi - exact| 1.872e-03") != NULL, "%s", r.out);
+  run_output_free(&r);
+  r = run_cli("pde run nls --scheme gauss-prk --no-project");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_assert(strstr(r.out, "projected") == NULL, "%s", r.out);
+  cr_assert(strstr(r.out, "max |psi - exact| 1.891e-03") != NULL, "%s", r.out);
+  run_output_free(&r);
+}
