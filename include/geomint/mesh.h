@@ -202,7 +202,7 @@ typedef struct gm_poisson_options {
   size_t levels;            /* red refinements of the input before solving (default 0; the
                                multigrid needs >= 1: the input is its coarsest level) */
   double rtol;              /* multigrid: relative residual (default 1e-10) */
-  size_t pre_smooth, post_smooth; /* multigrid: Gauss–Seidel sweeps (default 1, 1) */
+  size_t pre_smooth, post_smooth; /* multigrid: Gauss–Seidel sweeps (default 2, 2) */
   size_t max_iterations;    /* multigrid: CG iterations (0: 200) */
   int measure_contraction;  /* multigrid: also measure the V-cycle's contraction factor */
   size_t max_bytes;         /* refinement memory limit (0: physical memory) */

@@ -93,7 +93,7 @@ gm_status gm_dec_transfer(const gm_complex *from, const gm_complex *to, size_t k
 
 typedef struct gm_multigrid_options {
   size_t pre_smooth, post_smooth; /* symmetric Gauss–Seidel sweeps: forward before the coarse
-                                     correction, backward after (defaults 1, 1) */
+                                     correction, backward after (defaults 2, 2) */
   size_t max_iterations;          /* of gm_multigrid_pcg (default 200) */
   double rtol;                    /* ‖b − A x‖ <= rtol ‖b‖ (default 1e-10) */
 } gm_multigrid_options;

@@ -34,7 +34,7 @@ struct gm_multigrid {
 };
 
 gm_multigrid_options gm_multigrid_defaults(void) {
-  gm_multigrid_options o = {1, 1, 200, 1e-10};
+  gm_multigrid_options o = {2, 2, 200, 1e-10};
   return o;
 }
 

@@ -27,7 +27,7 @@ gm_poisson_options gm_poisson_defaults(void) {
   memset(&o, 0, sizeof o);
   o.solver = GM_POISSON_CHOLMOD;
   o.rtol = 1e-10;
-  o.pre_smooth = o.post_smooth = 1;
+  o.pre_smooth = o.post_smooth = 2;
   return o;
 }
 
