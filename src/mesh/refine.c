@@ -125,16 +125,23 @@ gm_status gm_mesh_refine(const gm_mesh *coarse, size_t max_bytes, gm_mesh **fine
         v[2] = v[3], v[3] = s;
       }
     }
-    /* mid[i][j]: fine index of the midpoint of (x_i, x_j), mid[i][i] = x_i */
+    /* mid[i][j]: fine index of the midpoint of (x_i, x_j), mid[i][i] = x_i. The cell's edges
+     * come from gm_complex_local_faces (lexicographic pairs of its ascending vertices). */
+    static const int pair_index[2][4][4] = {{{0, 0, 1, 0}, {0, 0, 2, 0}, {1, 2, 0, 0}, {0}},
+                                            {{0, 0, 1, 2}, {0, 0, 3, 4}, {1, 3, 0, 5},
+                                             {2, 4, 5, 0}}};
+    size_t local_edges[6], pos[4] = {0, 0, 0, 0};
+    gm_complex_local_faces(cx, c, 1, local_edges);
+    const size_t *asc = gm_complex_simplices(cx, n) + c * (n + 1);
     size_t mid[4][4];
     for (size_t i = 0; i <= n; ++i) {
       mid[i][i] = v[i];
-      for (size_t j = i + 1; j <= n; ++j) {
-        size_t pair[2] = {v[i], v[j]};
-        size_t e = gm_complex_find(cx, 1, pair);
-        mid[i][j] = mid[j][i] = nv + e;
-      }
+      for (size_t q = 0; q <= n; ++q)
+        if (asc[q] == v[i]) pos[i] = q;
     }
+    for (size_t i = 0; i <= n; ++i)
+      for (size_t j = i + 1; j <= n; ++j)
+        mid[i][j] = mid[j][i] = nv + local_edges[pair_index[n - 2][pos[i]][pos[j]]];
     size_t *out = m->cells + c * per * (n + 1);
     if (n == 2) {
       static const int tri[4][3][2] = {{{0, 0}, {0, 1}, {0, 2}},
