@@ -55,6 +55,17 @@ gm_status gm_refinement_restriction(const gm_refinement *r, size_t k, gm_csr **o
 gm_status gm_refinement_prolongation(const gm_refinement *r, size_t k, gm_csr **out,
                                      gm_error *err);
 
+/* The 0-form prolongation (linear interpolation, = gm_refinement_prolongation(r, 0)) of a red
+ * refinement (n_fine_vertices = vertices + edges of coarse) straight from the vertex numbering
+ * of gm_mesh_refine, without the fine complex or the parent maps of the higher simplices: what multigrid for 0-forms needs. Rows of fine vertices with
+ * fine_drop[v] != 0 and columns of coarse vertices with coarse_drop[v] != 0 are left out and
+ * the rest renumbered in order (e.g. the boundary masks, for Dirichlet problems; NULL keeps
+ * all). GM_EINVAL when the vertex counts do not match a red refinement. */
+gm_status gm_refinement_vertex_prolongation(const gm_complex *coarse, size_t n_fine_vertices,
+                                            const unsigned char *coarse_drop,
+                                            const unsigned char *fine_drop, gm_csr **out,
+                                            gm_error *err);
+
 /* How well-centred the cells are: a cell is well-centred when its circumcenter is strictly
  * inside it; the margin is the least barycentric coordinate of a circumcenter (> 0: all
  * well-centred). "children": the fine cells whose parent is well-centred. */

@@ -311,3 +311,43 @@ gm_status gm_refinement_well_centredness(const gm_refinement *r, gm_well_centred
   free(wcc);
   return GM_OK;
 }
+
+gm_status gm_refinement_vertex_prolongation(const gm_complex *coarse, size_t n_fine_vertices,
+                                            const unsigned char *coarse_drop,
+                                            const unsigned char *fine_drop, gm_csr **out,
+                                            gm_error *err) {
+  if (coarse == NULL || out == NULL) return gm_error_set(err, GM_EINVAL, "NULL argument");
+  *out = NULL;
+  const size_t nv = coarse->n_vertices, ne = coarse->count[1], nf = n_fine_vertices;
+  if (nf != nv + ne)
+    return gm_error_set(err, GM_EINVAL,
+                        "not a red refinement: %zu fine vertices, the coarse complex has %zu "
+                        "vertices and %zu edges",
+                        nf, nv, ne);
+  size_t *cmap = malloc((nv ? nv : 1) * sizeof(size_t)), nc = 0, nr = 0;
+  if (cmap == NULL) return gm_error_set(err, GM_ENOMEM, "out of memory");
+  for (size_t v = 0; v < nv; ++v) cmap[v] = coarse_drop && coarse_drop[v] ? SIZE_MAX : nc++;
+  for (size_t v = 0; v < nf; ++v) nr += !(fine_drop && fine_drop[v]);
+  gm_csr *P = NULL;
+  gm_status st = gm_csr_create(nr, nc, nv + 2 * ne, &P);
+  if (st != GM_OK) {
+    free(cmap);
+    return gm_error_set(err, st, "out of memory for the prolongation");
+  }
+  size_t w = 0, r = 0;
+  for (size_t v = 0; v < nf; ++v) {
+    if (fine_drop && fine_drop[v]) continue;
+    size_t c[2] = {v, SIZE_MAX};
+    double val = 1.0;
+    if (v >= nv) { /* midpoint: the mean of the edge's ends (ascending, so columns ascend) */
+      c[0] = coarse->simplices[1][2 * (v - nv)], c[1] = coarse->simplices[1][2 * (v - nv) + 1];
+      val = 0.5;
+    }
+    for (int q = 0; q < 2; ++q)
+      if (c[q] != SIZE_MAX && cmap[c[q]] != SIZE_MAX) P->col[w] = cmap[c[q]], P->val[w++] = val;
+    P->row_start[++r] = w;
+  }
+  free(cmap);
+  *out = P;
+  return GM_OK;
+}

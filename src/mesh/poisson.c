@@ -138,59 +138,6 @@ done:
   return st;
 }
 
-/* The Whitney (linear) prolongation of vertex values from `coarse` to its red refinement,
- * restricted to interior vertices of both (the correction vanishes on the Dirichlet boundary):
- * fine vertex v < V is coarse vertex v, fine vertex V + e the mean of the ends of coarse edge e
- * (src/mesh/refine.c numbering; the same matrix as gm_refinement_prolongation(r, 0) without the
- * fine complex). */
-static gm_status interior_prolongation(const gm_mesh *coarse, const unsigned char *fine_bnd,
-                                       size_t n_fine, gm_csr **out, gm_error *err) {
-  gm_complex *cx = NULL;
-  gm_status st = gm_mesh_complex(coarse, &cx, err);
-  if (st != GM_OK) return st;
-  const size_t nv = coarse->n_vertices, ne = gm_complex_count(cx, 1);
-  const unsigned char *cb = gm_complex_boundary_mask(cx, 0);
-  const size_t *edges = gm_complex_simplices(cx, 1);
-  size_t *cmap = malloc(nv * sizeof(size_t)), nci = 0, nfi = 0;
-  if (cmap == NULL) {
-    gm_complex_free(cx);
-    return gm_error_set(err, GM_ENOMEM, "out of memory");
-  }
-  for (size_t v = 0; v < nv; ++v) cmap[v] = cb[v] ? SIZE_MAX : nci++;
-  for (size_t v = 0; v < n_fine; ++v) nfi += !fine_bnd[v];
-  gm_csr *P = NULL;
-  st = gm_csr_create(nfi, nci, nv + 2 * ne, &P);
-  if (st == GM_OK && n_fine != nv + ne)
-    st = gm_error_set(err, GM_EINVAL, "level sizes do not match a red refinement");
-  if (st == GM_OK) {
-    size_t w = 0, r = 0;
-    for (size_t v = 0; v < n_fine; ++v) {
-      if (fine_bnd[v]) continue;
-      size_t c[2] = {v, SIZE_MAX};
-      double val = 1.0;
-      if (v >= nv) c[0] = edges[2 * (v - nv)], c[1] = edges[2 * (v - nv) + 1], val = 0.5;
-      if (c[1] != SIZE_MAX && c[1] < c[0]) {
-        size_t t = c[0];
-        c[0] = c[1], c[1] = t;
-      }
-      for (int q = 0; q < 2; ++q)
-        if (c[q] != SIZE_MAX && cmap[c[q]] != SIZE_MAX) {
-          P->col[w] = cmap[c[q]];
-          P->val[w++] = val;
-        }
-      P->row_start[++r] = w;
-    }
-  }
-  free(cmap);
-  gm_complex_free(cx);
-  if (st != GM_OK) {
-    gm_csr_free(P);
-    return st;
-  }
-  *out = P;
-  return GM_OK;
-}
-
 gm_status gm_mesh_poisson_solve(const gm_mesh *mesh, const gm_poisson_options *options,
                                 gm_poisson_report *report, double **u_out, gm_error *err) {
   if (mesh == NULL || report == NULL) return gm_error_set(err, GM_EINVAL, "NULL argument");
@@ -263,25 +210,25 @@ gm_status gm_mesh_poisson_solve(const gm_mesh *mesh, const gm_poisson_options *o
     }
     report->solve_s = wall_now() - t1;
   } else {
-    /* P[l]: level (levels − l − 1) → level (levels − l), finest first; each needs the fine
-     * level's boundary mask, built from the complex of that level. */
+    /* P[l]: level (levels − l − 1) → level (levels − l), finest first, on interior vertices
+     * (the correction vanishes on the Dirichlet boundary); the fine level's boundary mask is the
+     * previous coarse one (s.bnd on the finest level). */
     const unsigned char *fb = s.bnd;
     unsigned char *mask = NULL;
     for (size_t l = 0; l < opt.levels && st == GM_OK; ++l) {
       const gm_mesh *c = lv[opt.levels - l - 1], *f = lv[opt.levels - l];
-      st = interior_prolongation(c, fb, f->n_vertices, &P[l], err);
+      gm_complex *cx = NULL;
+      st = gm_mesh_complex(c, &cx, err);
       if (st != GM_OK) break;
-      if (l + 1 < opt.levels) { /* the coarse level's mask for the next prolongation */
-        gm_complex *cx = NULL;
-        st = gm_mesh_complex(c, &cx, err);
-        if (st != GM_OK) break;
-        free(mask);
-        mask = malloc(c->n_vertices);
-        if (mask) memcpy(mask, gm_complex_boundary_mask(cx, 0), c->n_vertices);
-        gm_complex_free(cx);
-        if (mask == NULL) st = gm_error_set(err, GM_ENOMEM, "out of memory");
-        fb = mask;
-      }
+      const unsigned char *cb = gm_complex_boundary_mask(cx, 0);
+      st = gm_refinement_vertex_prolongation(cx, f->n_vertices, cb, fb, &P[l], err);
+      unsigned char *next = st == GM_OK ? malloc(c->n_vertices) : NULL;
+      if (next) memcpy(next, cb, c->n_vertices);
+      gm_complex_free(cx);
+      if (st == GM_OK && next == NULL) st = gm_error_set(err, GM_ENOMEM, "out of memory");
+      free(mask);
+      mask = next;
+      fb = mask;
     }
     if (st == GM_OK) {
       gm_multigrid_options mo = gm_multigrid_defaults();
