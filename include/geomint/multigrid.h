@@ -100,6 +100,16 @@ typedef struct gm_transfer_report {
 gm_status gm_dec_transfer(const gm_complex *from, const gm_complex *to, size_t k, gm_csr **out,
                           gm_transfer_report *report, gm_error *err);
 
+/* ---- pull-back under a simplicial map -------------------------------------------------------- */
+
+/* f* on k-cochains for the simplicial map given by vertex_map (K's vertex v ↦ M's vertex
+ * vertex_map[v]): the count_K(k) × count_M(k) matrix with ⟨f*α, σ⟩ = ±⟨α, f(σ)⟩ (the sign of the
+ * permutation sorting the image, times top-simplex orientations) and 0 where σ collapses. A
+ * cochain map: d f* = f* d exactly. GM_EINVAL when the image of a k-simplex is not a simplex of
+ * M (the message names it) or an image vertex is out of range. */
+gm_status gm_dec_pullback(const gm_complex *K, const gm_complex *M, const size_t *vertex_map,
+                          size_t k, gm_csr **out, gm_error *err);
+
 /* ---- geometric multigrid -------------------------------------------------------------------- */
 
 typedef struct gm_multigrid_options {

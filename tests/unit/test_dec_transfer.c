@@ -151,3 +151,61 @@ Test(transfer, support_volume_zero_forms_do_not_commute_with_d) {
   gm_complex_free(c), gm_complex_free(f);
   gm_mesh_free(m), gm_mesh_free(fm);
 }
+
+/* Pull-back under simplicial maps: the half-turn of a square grid onto itself (an automorphism),
+ * and the constant map (every simplex of positive dimension collapses); d f* = f* d exactly. */
+Test(transfer, pullback_is_a_cochain_map) {
+  gm_mesh *m = NULL;
+  gm_error err = {{0}};
+  const size_t nx = 5, ny = 4;
+  cr_assert_eq(gm_mesh_rectangle(0, 1, 0, 1, nx, ny, GM_DIAGONAL_RIGHT, &m, &err), GM_OK);
+  gm_complex *K = test_complex(m);
+  const size_t V = gm_complex_count(K, 0);
+  size_t *turn = malloc(V * sizeof(size_t)), *point = calloc(V, sizeof(size_t));
+  const double *x = gm_complex_coordinates(K);
+  for (size_t v = 0; v < V; ++v) { /* (x, y) -> (1 − x, 1 − y): find the image by position */
+    for (size_t w = 0; w < V; ++w)
+      if (fabs(x[2 * w] - (1.0 - x[2 * v])) < 1e-12 && fabs(x[2 * w + 1] - (1.0 - x[2 * v + 1])) < 1e-12)
+        turn[v] = w;
+  }
+  for (int which = 0; which < 2; ++which) {
+    const size_t *f = which == 0 ? turn : point;
+    for (size_t k = 0; k < 2; ++k) {
+      gm_csr *Fk = NULL, *Fk1 = NULL;
+      cr_assert_eq(gm_dec_pullback(K, K, f, k, &Fk, &err), GM_OK, "%s", err.message);
+      cr_assert_eq(gm_dec_pullback(K, K, f, k + 1, &Fk1, &err), GM_OK, "%s", err.message);
+      const size_t nk = gm_complex_count(K, k), nk1 = gm_complex_count(K, k + 1);
+      double *a = malloc(nk * sizeof(double)), *fa = malloc(nk * sizeof(double));
+      double *da = malloc(nk1 * sizeof(double)), *u = malloc(nk1 * sizeof(double));
+      double *v = malloc(nk1 * sizeof(double));
+      test_random_fill(nk, a, 5 + k);
+      gm_csr_matvec(Fk, 1.0, a, 0.0, fa);
+      gm_csr_matvec(gm_complex_d(K, k), 1.0, fa, 0.0, u); /* d f* a */
+      gm_csr_matvec(gm_complex_d(K, k), 1.0, a, 0.0, da);
+      gm_csr_matvec(Fk1, 1.0, da, 0.0, v); /* f* d a */
+      double defect = 0.0;
+      for (size_t i = 0; i < nk1; ++i) defect = fmax(defect, fabs(u[i] - v[i]));
+      cr_expect_eq(defect, 0.0, "map %d k %zu: |d f* - f* d| = %.3g", which, k, defect);
+      /* the half-turn is an involution: f* f* = I */
+      if (which == 0) {
+        double *ffa = malloc(nk * sizeof(double));
+        gm_csr_matvec(Fk, 1.0, fa, 0.0, ffa);
+        for (size_t i = 0; i < nk; ++i) cr_assert_eq(ffa[i], a[i]);
+        free(ffa);
+      } else if (k == 1) {
+        cr_expect_eq(gm_csr_nnz(Fk), 0); /* every edge collapses */
+      }
+      free(a), free(fa), free(da), free(u), free(v);
+      gm_csr_free(Fk), gm_csr_free(Fk1);
+    }
+  }
+  /* not simplicial: a vertex map that tears a triangle apart */
+  size_t *bad = malloc(V * sizeof(size_t));
+  for (size_t v = 0; v < V; ++v) bad[v] = (v * 7) % V;
+  gm_csr *F = NULL;
+  cr_expect_eq(gm_dec_pullback(K, K, bad, 2, &F, &err), GM_EINVAL);
+  cr_expect_not_null(strstr(err.message, "not a simplicial map"), "%s", err.message);
+  free(turn), free(point), free(bad);
+  gm_complex_free(K);
+  gm_mesh_free(m);
+}
