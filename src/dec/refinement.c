@@ -159,8 +159,7 @@ gm_status gm_refinement_create(const gm_complex *coarse, const gm_complex *fine,
       size_t S[8];
       size_t ms = carrier(coarse, k, verts, S);
       size_t p = ms <= n + 1 ? gm_complex_find(coarse, ms - 1, S) : SIZE_MAX;
-      if (p == SIZE_MAX ||
-          (k == n && S[0] != SIZE_MAX && p != i / per)) {
+      if (p == SIZE_MAX || (k == n && p != i / per)) {
         gm_refinement_free(r);
         return gm_error_set(err, GM_EINVAL,
                             "not nested: fine %zu-simplex %zu lies in no coarse simplex%s", k, i,
