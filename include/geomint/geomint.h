@@ -10,6 +10,7 @@
 #include "geomint/sparse.h"
 #include "geomint/dec.h"
 #include "geomint/mesh.h"
+#include "geomint/multigrid.h"
 #include "geomint/mimetic.h"
 #include "geomint/variational.h"
 #include "geomint/fields.h"

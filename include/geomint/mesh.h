@@ -82,6 +82,22 @@ gm_status gm_mesh_torus(double R, double r, size_t n_major, size_t n_minor, gm_m
                         gm_error *err);
 
 
+/* ---- red refinement (src/mesh/refine.c) ---------------------------------------------------- */
+
+/* One level of regular (red) refinement of a triangle (dim 2, N 2 or 3) or tetrahedral (dim 3)
+ * mesh: triangles into 4 by their edge midpoints, tetrahedra into 8 by Bey's rule (Computing 55
+ * (1995) 355–378), see src/mesh/refine.c for the vertex orders. Fine vertex v < V is coarse vertex
+ * v, fine vertex V + e the midpoint of coarse edge e (complex numbering); the 2^n children of
+ * coarse cell c are fine cells 2^n c .. 2^n c + 2^n − 1, with c's tag. The fine mesh's size is
+ * estimated first: above max_bytes (0: the machine's physical memory) it is GM_ENOMEM naming
+ * the bytes, before anything is allocated. Errors of gm_complex_create for a bad input (e.g.
+ * non-manifold); GM_EUNSUPPORTED for dim 1. *fine is owned by the caller. */
+gm_status gm_mesh_refine(const gm_mesh *coarse, size_t max_bytes, gm_mesh **fine, gm_error *err);
+/* Bytes of the mesh after `levels` refinements (upper bound: the coarse edge and face counts are
+ * bounded by the cells' ones, the later levels follow exact recurrences). */
+gm_status gm_mesh_refine_estimate(const gm_mesh *coarse, size_t levels, double *bytes,
+                                  gm_error *err);
+
 /* ---- files -------------------------------------------------------------------------------- */
 
 /* Read a mesh by extension: .msh (Gmsh ASCII 2.2 or 4.1) or .off. The cells are the highest-
@@ -108,6 +124,8 @@ gm_status gm_mesh_parse_msh(const char *data, size_t size, gm_mesh **out, gm_err
 gm_status gm_mesh_parse_off(const char *data, size_t size, gm_mesh **out, gm_error *err);
 /* Write a triangle mesh (dim 2, N <= 3) as OFF (cells as given, coordinates %.17g). */
 gm_status gm_mesh_write_off(const gm_mesh *mesh, const char *path, gm_error *err);
+/* Write any mesh (N <= 3) as Gmsh ASCII 2.2 (physical and elementary tag = the cell tag). */
+gm_status gm_mesh_write_msh(const gm_mesh *mesh, const char *path, gm_error *err);
 
 /* A field for gm_vtu_write: n_components = 1 (a cochain: one value per `degree`-simplex) or 3
  * (a vector per simplex, e.g. gm_dec_sharp at vertices); values borrowed. */
@@ -164,7 +182,33 @@ typedef struct gm_poisson_report {
   double error_max;              /* max |u_h − u| over the vertices */
   double error_l2;               /* (Σ ⋆_0 (u_h − u)²)^{1/2} */
   double solution_max;           /* max |u| */
+  size_t n_cells;                /* of the mesh solved on (after refinement) */
+  size_t iterations;             /* CG iterations (multigrid; 0 for CHOLMOD) */
+  double relative_residual;      /* ‖b − A u‖ / ‖b‖ of the interior system */
+  double contraction;            /* V-cycle contraction factor, when measured (else 0) */
+  double setup_s;                /* wall seconds: refinement, complex, geometry, assembly */
+  double factor_s;               /* CHOLMOD analyse + factor, or the multigrid hierarchy */
+  double solve_s;                /* triangular solves, or preconditioned CG */
 } gm_poisson_report;
+
+typedef enum {
+  GM_POISSON_CHOLMOD = 0,  /* sparse Cholesky of the interior system */
+  GM_POISSON_MULTIGRID = 1 /* CG preconditioned by a geometric V-cycle (geomint/multigrid.h) on
+                              the hierarchy input mesh → `levels` red refinements */
+} gm_poisson_solver;
+
+typedef struct gm_poisson_options {
+  gm_poisson_solver solver; /* default CHOLMOD */
+  size_t levels;            /* red refinements of the input before solving (default 0; the
+                               multigrid needs >= 1: the input is its coarsest level) */
+  double rtol;              /* multigrid: relative residual (default 1e-10) */
+  size_t pre_smooth, post_smooth; /* multigrid: Gauss–Seidel sweeps (default 2, 2) */
+  size_t max_iterations;    /* multigrid: CG iterations (0: 200) */
+  int measure_contraction;  /* multigrid: also measure the V-cycle's contraction factor */
+  size_t max_bytes;         /* refinement memory limit (0: physical memory) */
+} gm_poisson_options;
+
+gm_poisson_options gm_poisson_defaults(void);
 
 /* Solve −Δu = f with the manufactured solution u(x) = Π_i sin(π (x_i − lo_i)/L_i + 1/4) (lo, L:
  * the bounding box), f = u Σ_i (π/L_i)², Dirichlet data u on the boundary, with the DEC
@@ -174,6 +218,13 @@ typedef struct gm_poisson_report {
  * GM_ESINGULAR when the stiffness matrix is not positive definite (message says why). */
 gm_status gm_mesh_poisson(const gm_mesh *mesh, gm_poisson_report *report, double *u_out,
                           gm_error *err);
+/* The same check after options->levels red refinements of mesh (gm_mesh_refine), solved by the
+ * chosen solver (options NULL: defaults, i.e. gm_mesh_poisson). *u_out (may be NULL) receives
+ * the vertex values on the refined mesh (report->n_vertices, owned by the caller). Errors as
+ * gm_mesh_poisson; GM_ENOMEM naming the bytes when the refined mesh would exceed
+ * options->max_bytes; GM_ENOCONV when CG does not reach rtol. */
+gm_status gm_mesh_poisson_solve(const gm_mesh *mesh, const gm_poisson_options *options,
+                                gm_poisson_report *report, double **u_out, gm_error *err);
 
 #ifdef __cplusplus
 }

@@ -8,11 +8,14 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "cli/mesh_multigrid.h"
 
 static const char usage[] =
     "usage: geomint mesh info FILE [--json]\n"
-    "       geomint mesh poisson FILE [--out FILE.vtu]\n"
-    "       geomint mesh poisson --levels L [--dim 2|3] [--n0 N] [--json]\n\n"
+    "       geomint mesh poisson FILE [--out FILE.vtu] [--solver cholmod|mg] [--refine L]\n"
+    "       geomint mesh poisson --levels L [--dim 2|3] [--n0 N] [--json]\n"
+    "       geomint mesh refine FILE --levels L [--out FILE.msh] [--max-memory SIZE] [--json]\n"
+    "       geomint mesh transfer A B [--json]\n\n"
     "Read a mesh (Gmsh .msh ASCII 2.2 or 4.1, or .off) and\n"
     "  info     print counts, Euler characteristic, Betti numbers, boundary, and the quality\n"
     "           report: non-manifold faces, reoriented, degenerate and inverted cells, cells that\n"
@@ -22,10 +25,23 @@ static const char usage[] =
     "           error (a quick check that a mesh is fit for DEC); with --levels L, on L\n"
     "           generated meshes of the unit square (--dim 2, default) or cube (--dim 3) with\n"
     "           N, 2N, ..., 2^(L-1) N cells a side (--n0 N, default 4), printing the errors and\n"
-    "           their observed rate of convergence\n\n"
+    "           their observed rate of convergence\n"
+    "  refine   L levels of red refinement (triangles into 4, tetrahedra into 8 by Bey's rule),\n"
+    "           printing counts, time and how many children of well-centred cells are\n"
+    "           well-centred; --out writes the finest mesh (Gmsh 2.2)\n"
+    "  transfer the support-volume transfer of top forms and 0-forms between two triangle\n"
+    "           meshes of one planar domain (polygon clipping), both ways: areas, the change of\n"
+    "           the total of a top form, the error on a constant and on a linear 0-form;\n"
+    "           meshes of different domains are refused (exit 2) with their areas\n\n"
     "options:\n"
     "  --json       (info, poisson --levels) print one JSON object\n"
-    "  --out FILE   (poisson) write the mesh with u_h, u and the error to a .vtu file\n"
+    "  --out FILE   (poisson) write the mesh with u_h, u and the error to a .vtu file;\n"
+    "               (refine) write the finest mesh as .msh\n"
+    "  --solver S   (poisson FILE) cholmod (default) or mg: CG preconditioned by a geometric\n"
+    "               multigrid V-cycle on the hierarchy FILE -> --refine L refinements (L >= 1)\n"
+    "  --refine L   (poisson FILE) solve on the mesh refined L times (default 0)\n"
+    "  --max-memory SIZE  (refine, poisson) refuse a refinement whose mesh needs more (suffix\n"
+    "               K, M, G; default: the physical memory)\n"
     "  --max-file-size SIZE  refuse files larger than SIZE bytes (suffix K, M, G: powers of\n"
     "               1024; default 1G); a NUL byte (a binary file, /dev/zero) is refused at once\n\n"
     "Exit status: 0 success (info: also for a mesh with defects, which are reported), 1 the\n"
@@ -178,27 +194,36 @@ static int mesh_info(const char *path, int json) {
   return CLI_EXIT_OK;
 }
 
-static int mesh_poisson(const char *path, const char *out) {
+static int mesh_poisson(const char *path, const char *out, const gm_poisson_options *opt) {
   gm_mesh *m = NULL;
   gm_error err = {{0}};
   int status = read_mesh(path, &m);
   if (status != CLI_EXIT_OK) return status;
   gm_poisson_report rep;
-  double *u = malloc(m->n_vertices * sizeof(double));
-  if (u == NULL) {
-    gm_mesh_free(m);
-    cli_error("mesh", "out of memory");
-    return CLI_EXIT_FAILURE;
-  }
-  gm_status st = gm_mesh_poisson(m, &rep, u, &err);
+  double *u = NULL;
+  gm_status st = gm_mesh_poisson_solve(m, opt, &rep, &u, &err);
   if (st != GM_OK) {
     cli_error("mesh", "poisson on %s: %s", path, err.message);
     free(u);
     gm_mesh_free(m);
-    return CLI_EXIT_FAILURE;
+    return st == GM_EINVAL && opt->solver == GM_POISSON_MULTIGRID && opt->levels == 0
+               ? CLI_EXIT_USAGE
+               : CLI_EXIT_FAILURE;
   }
   printf("poisson on %s: -Δu = f, u = Π sin(π(x_i − lo_i)/L_i + 1/4), Dirichlet boundary\n", path);
+  if (opt->levels > 0) printf("  %-24s %zu (%zu cells)\n", "refinements", opt->levels, rep.n_cells);
   printf("  %-24s %zu (%zu unknowns)\n", "vertices", rep.n_vertices, rep.n_unknowns);
+  if (opt->solver == GM_POISSON_MULTIGRID) {
+    printf("  %-24s mg: CG + V(%zu,%zu) Gauss-Seidel, %zu levels\n", "solver", opt->pre_smooth,
+           opt->post_smooth, opt->levels + 1);
+    printf("  %-24s %zu (relative residual %.3e)\n", "CG iterations", rep.iterations,
+           rep.relative_residual);
+    printf("  %-24s %.4f\n", "V-cycle contraction", rep.contraction);
+  } else {
+    printf("  %-24s cholmod (relative residual %.3e)\n", "solver", rep.relative_residual);
+  }
+  printf("  %-24s %.3f / %.3f / %.3f\n", "setup / factor / solve s", rep.setup_s, rep.factor_s,
+         rep.solve_s);
   printf("  %-24s %.6g\n", "h (longest edge)", rep.h);
   printf("  %-24s %.6e\n", "max error", rep.error_max);
   printf("  %-24s %.6e\n", "L2 error", rep.error_l2);
@@ -327,17 +352,20 @@ static int poisson_levels(size_t levels, size_t dim, size_t n0, int json) {
 
 static int mesh_main(int argc, char **argv) {
   int json = 0;
-  const char *out = NULL, *max_size = NULL;
-  size_t levels = 0, dim = 2, n0 = 4;
+  const char *out = NULL, *max_size = NULL, *solver = NULL, *max_memory = NULL;
+  size_t levels = 0, dim = 2, n0 = 4, refine = 0;
   cli_option options[] = {{"--json", CLI_ARG_FLAG, &json, 0},
                           {"--out", CLI_ARG_STRING, &out, 0},
                           {"--max-file-size", CLI_ARG_STRING, &max_size, 0},
                           {"--levels", CLI_ARG_COUNT, &levels, 0},
                           {"--dim", CLI_ARG_COUNT, &dim, 0},
-                          {"--n0", CLI_ARG_COUNT, &n0, 0}};
-  const char *pos[2];
+                          {"--n0", CLI_ARG_COUNT, &n0, 0},
+                          {"--solver", CLI_ARG_STRING, &solver, 0},
+                          {"--refine", CLI_ARG_COUNT, &refine, 0},
+                          {"--max-memory", CLI_ARG_STRING, &max_memory, 0}};
+  const char *pos[3];
   size_t n_pos = 0;
-  int status = cli_parse("mesh", argc, argv, options, sizeof options / sizeof options[0], pos, 2,
+  int status = cli_parse("mesh", argc, argv, options, sizeof options / sizeof options[0], pos, 3,
                          &n_pos);
   if (status == CLI_HELP) {
     fputs(usage, stdout);
@@ -347,6 +375,50 @@ static int mesh_main(int argc, char **argv) {
   if (max_size != NULL && (max_file_bytes = parse_size(max_size)) == 0) {
     cli_error("mesh", "--max-file-size %s: expected a size in bytes such as 4096, 64M or 2G",
               max_size);
+    return CLI_EXIT_USAGE;
+  }
+  size_t max_memory_bytes = 0;
+  if (max_memory != NULL && (max_memory_bytes = parse_size(max_memory)) == 0) {
+    cli_error("mesh", "--max-memory %s: expected a size in bytes such as 4096, 64M or 2G",
+              max_memory);
+    return CLI_EXIT_USAGE;
+  }
+  const int is_poisson_file = n_pos == 2 && strcmp(pos[0], "poisson") == 0;
+  if ((options[6].seen || options[7].seen) && !is_poisson_file) {
+    cli_error("mesh", "--solver and --refine belong to 'mesh poisson FILE'");
+    return CLI_EXIT_USAGE;
+  }
+  if (n_pos >= 1 && strcmp(pos[0], "refine") == 0) {
+    if (n_pos != 2 || !options[3].seen || options[4].seen || options[5].seen) {
+      cli_error("mesh", "usage: mesh refine FILE --levels L [--out FILE.msh] [--json]");
+      return CLI_EXIT_USAGE;
+    }
+    if (levels > 12) {
+      cli_error("mesh", "--levels %zu: at most 12 refinements (each multiplies the cells by 4 "
+                        "or 8)", levels);
+      return CLI_EXIT_USAGE;
+    }
+    gm_mesh *m = NULL;
+    status = read_mesh(pos[1], &m);
+    if (status != CLI_EXIT_OK) return status;
+    status = cli_mesh_refine(m, pos[1], levels, out, max_memory_bytes, json);
+    gm_mesh_free(m);
+    return status;
+  }
+  if (n_pos >= 1 && strcmp(pos[0], "transfer") == 0) {
+    if (n_pos != 3 || options[1].seen || options[3].seen || options[4].seen || options[5].seen) {
+      cli_error("mesh", "usage: mesh transfer A B [--json]");
+      return CLI_EXIT_USAGE;
+    }
+    gm_mesh *a = NULL, *b = NULL;
+    status = read_mesh(pos[1], &a);
+    if (status == CLI_EXIT_OK) status = read_mesh(pos[2], &b);
+    if (status == CLI_EXIT_OK) status = cli_mesh_transfer(a, pos[1], b, pos[2], json);
+    gm_mesh_free(a), gm_mesh_free(b);
+    return status;
+  }
+  if (n_pos > 2) {
+    cli_error("mesh", "too many arguments (see geomint mesh --help)");
     return CLI_EXIT_USAGE;
   }
   if (n_pos >= 1 && strcmp(pos[0], "poisson") == 0 && options[3].seen) {
@@ -376,11 +448,36 @@ static int mesh_main(int argc, char **argv) {
       cli_error("mesh", "--json belongs to 'mesh info'");
       return CLI_EXIT_USAGE;
     }
-    return mesh_poisson(pos[1], out);
+    gm_poisson_options opt = gm_poisson_defaults();
+    if (solver != NULL) {
+      int sv = cli_mesh_solver(solver);
+      if (sv < 0) {
+        cli_error("mesh", "--solver %s: use cholmod or mg", solver);
+        return CLI_EXIT_USAGE;
+      }
+      opt.solver = (gm_poisson_solver)sv;
+    }
+    if (refine > 12) {
+      cli_error("mesh", "--refine %zu: at most 12 refinements", refine);
+      return CLI_EXIT_USAGE;
+    }
+    if (opt.solver == GM_POISSON_MULTIGRID && refine == 0) {
+      cli_error("mesh", "--solver mg needs --refine L >= 1: FILE is the coarsest level");
+      return CLI_EXIT_USAGE;
+    }
+    if (out != NULL && refine > 0) {
+      cli_error("mesh", "--out with --refine: write the refined mesh with 'mesh refine' and "
+                        "solve on it");
+      return CLI_EXIT_USAGE;
+    }
+    opt.levels = refine;
+    opt.max_bytes = max_memory_bytes;
+    opt.measure_contraction = opt.solver == GM_POISSON_MULTIGRID;
+    return mesh_poisson(pos[1], out, &opt);
   }
-  cli_error("mesh", "unknown subcommand '%s': use 'info' or 'poisson'", pos[0]);
+  cli_error("mesh", "unknown subcommand '%s': use info, poisson, refine or transfer", pos[0]);
   return CLI_EXIT_USAGE;
 }
 
-const cli_command cli_mesh_command = {"mesh", "read a mesh: topology, quality, Poisson check", usage,
+const cli_command cli_mesh_command = {"mesh", "read a mesh: topology, quality, Poisson check, refine, transfer", usage,
                                       mesh_main};
