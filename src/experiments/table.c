@@ -22,12 +22,13 @@ static const gm_experiment_info rows[] = {
      "exchange at h omega = 5; Verlet degrades at h omega = 1.5",
      "notes' check at t = 150: reference I = 0.013, 0.027, 0.957; IMEX h = 0.1: 0.017, 0.018, "
      "0.968, max |dH| = 0.020; Verlet h = 0.03: max |dH| = 0.65",
-     "oscillatory fpu", "3 s", "docs/oscillatory.md#fpu-seed-000-figs-22-23", NULL},
+     "oscillatory fpu", "3 s", "docs/oscillatory.md#fpu-seed-000-figs-22-23",
+     gm_experiment_run_fpu},
     {"fpu-long", "000 §2.4, Fig 2.3 (E3)",
      "IMEX h = 0.1 stays bounded to T = 4000 and keeps I; the trigonometric rows and vti beside "
      "it",
      "bounded, I correct (notes: max |dH| = 0.028, max |dI| = 0.10)", "oscillatory fpu-long",
-     "60 s", "docs/oscillatory.md#fpu-seed-000-figs-22-23", NULL},
+     "60 s", "docs/oscillatory.md#fpu-seed-000-figs-22-23", gm_experiment_run_fpu_long},
     {"multiscale", "001 §5.7.1-5.7.2",
      "the multiscale VI on the stiff spring pendulum against vi-midpoint and imex; 1-D MsFEM "
      "against P1",
@@ -63,14 +64,16 @@ static const gm_experiment_info rows[] = {
      "angle, J2's in the shape (r, z)",
      "qualitative: the reduced view separates the two precessions (no initial data, no final "
      "time)",
-     "reduction j2-satellite", "2 s", "docs/reduction.md#j2-satellite-seed-001-29", NULL},
+     "reduction j2-satellite", "2 s", "docs/reduction.md#j2-satellite-seed-001-29",
+     gm_experiment_run_j2_satellite},
     {"double-spherical-pendulum", "001 §2.10, Figs 2.7-2.9",
      "4th-order RSPRK against SPRK on the classical Routhian and RK4: bounded against drifting "
      "energy; spikes at the chart's singularity",
      "(E - E0)/E0 bounded for RSPRK, drifting for RK; RSPRK and SPRK 'agree very well' (no "
      "parameters given)",
      "reduction double-spherical-pendulum", "3 s",
-     "docs/reduction.md#double-spherical-pendulum-seed-001-210", NULL},
+     "docs/reduction.md#double-spherical-pendulum-seed-001-210",
+     gm_experiment_run_double_spherical_pendulum},
     {"phases", "001 ch. 4",
      "geometric phases against closed forms: Foucault, a spherical cap, Montgomery's rigid-body "
      "phase, a shape loop, the tet-mesh Levi-Civita holonomy",
