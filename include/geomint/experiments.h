@@ -199,6 +199,60 @@ typedef struct gm_dsp_result {
 gm_status gm_experiment_double_spherical_pendulum(const gm_dsp_config *config, const char *dir,
                                                   gm_dsp_result *result, gm_error *err);
 
+/* ---- seed 003 §6: the mimetic integrators' four tests ------------------------------------- */
+
+#define GM_MIMETIC_METHODS 5     /* mimetic-canonical-2, mimetic-galerkin-2, rk4, euler, symplectic-euler-a */
+#define GM_MIMETIC_CONVERGENCE 3 /* the first three: MCI, MGI, RK4 */
+#define GM_MIMETIC_LEVELS 6      /* steps conv_dt0 / 2^l */
+
+extern const char *const gm_mimetic_experiment_methods[GM_MIMETIC_METHODS];
+
+/* One test: the model and its setting, the steps of the phase portrait and of the invariant
+ * figure, the state components drawn, the invariant (NULL: the energy; else a part of an
+ * invariant's name) and the convergence study's first step and final time. */
+typedef struct gm_mimetic_info {
+  const char *name, *model, *setting; /* setting: "name=value" as printed, or NULL */
+  const char *setting_name;
+  double setting_value;
+  double dt_phase, dt_invariant, t_end;
+  size_t x, y;
+  const char *xlabel, *ylabel;
+  const char *invariant;
+  const char *invariant_label;
+  double conv_dt0, conv_t_end;
+} gm_mimetic_info;
+
+/* circular, lotka-volterra, pendulum, kepler; NULL for another name */
+const gm_mimetic_info *gm_mimetic_find(const char *name);
+
+typedef struct gm_mimetic_run {
+  const char *method; /* static */
+  double dt;
+  int status;         /* 0 ran to the end, 1 stopped on the way, -1 does not apply */
+  char why[GM_ERRMSG_SIZE + 32]; /* the reason of status != 0 */
+  double max_invariant_error;
+  char csv[GM_EXPERIMENT_PATH_SIZE]; /* "" without a directory */
+} gm_mimetic_run;
+
+typedef struct gm_mimetic_result {
+  const gm_mimetic_info *info;
+  size_t state_size;
+  size_t n_runs; /* each method at dt_phase, then (if different) at dt_invariant */
+  gm_mimetic_run runs[2 * GM_MIMETIC_METHODS];
+  int convergence_done;
+  double dts[GM_MIMETIC_LEVELS];
+  double state_error[GM_MIMETIC_CONVERGENCE][GM_MIMETIC_LEVELS];
+  double invariant_error[GM_MIMETIC_CONVERGENCE][GM_MIMETIC_LEVELS];
+  double order[GM_MIMETIC_CONVERGENCE], invariant_order[GM_MIMETIC_CONVERGENCE]; /* NAN: no fit */
+  int invariant_kept[GM_MIMETIC_CONVERGENCE]; /* the invariant at round-off (<= 1e-13) at all steps */
+  double wall_s;
+} gm_mimetic_result;
+
+/* With dir non-NULL, writes dir/NAME-METHOD-DT.csv (t, state, invariant error) and
+ * dir/NAME-convergence.csv. On an error after some runs, n_runs says how many are valid. */
+gm_status gm_experiment_mimetic(const char *name, const char *dir, gm_mimetic_result *result,
+                                gm_error *err);
+
 #ifdef __cplusplus
 }
 #endif

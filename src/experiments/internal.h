@@ -35,5 +35,13 @@ gm_status gm_experiment_run_j2_satellite(const char *dir, gm_experiment_result *
                                          gm_error *err);
 gm_status gm_experiment_run_double_spherical_pendulum(const char *dir, gm_experiment_result *result,
                                                       gm_error *err);
+gm_status gm_experiment_run_mimetic_circular(const char *dir, gm_experiment_result *result,
+                                             gm_error *err);
+gm_status gm_experiment_run_mimetic_lotka_volterra(const char *dir, gm_experiment_result *result,
+                                                   gm_error *err);
+gm_status gm_experiment_run_mimetic_pendulum(const char *dir, gm_experiment_result *result,
+                                             gm_error *err);
+gm_status gm_experiment_run_mimetic_kepler(const char *dir, gm_experiment_result *result,
+                                           gm_error *err);
 
 #endif

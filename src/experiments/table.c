@@ -83,19 +83,19 @@ static const gm_experiment_info rows[] = {
      "MCI and MGI keep R to round-off; explicit Euler spirals out, RK4 in; rate 4",
      "MCI, MGI keep R to machine precision; rate 4; 'symplectic Euler diverges' (a caption "
      "error: stable for dt < 2)",
-     "mimetic circular", "1 s", "docs/mimetic.md", NULL},
+     "mimetic circular", "1 s", "docs/mimetic.md", gm_experiment_run_mimetic_circular},
     {"mimetic-lotka-volterra", "003 §6.2",
      "neither mimetic scheme keeps V on this Poisson system; its error grows slowly",
      "MCI, MGI and RK4 similar, V not preserved, rate 4, 'no advantage'",
-     "mimetic lotka-volterra", "1 s", "docs/mimetic.md", NULL},
+     "mimetic lotka-volterra", "1 s", "docs/mimetic.md", gm_experiment_run_mimetic_lotka_volterra},
     {"mimetic-pendulum", "003 §6.3, Fig 14",
      "MGI keeps H to round-off, MCI bounded; H-error orders", "MGI H exact; MCI bounded; "
      "H-error orders MCI 4, RK4 5",
-     "mimetic pendulum", "1 s", "docs/mimetic.md", NULL},
+     "mimetic pendulum", "1 s", "docs/mimetic.md", gm_experiment_run_mimetic_pendulum},
     {"mimetic-kepler", "003 §6.4",
      "Kepler e = 0.6: MGI keeps H, MCI bounded, RK4 loses energy",
      "MGI H exact, MCI bounded; orders MCI 4, RK4 about 5", "mimetic kepler", "2 s",
-     "docs/mimetic.md", NULL},
+     "docs/mimetic.md", gm_experiment_run_mimetic_kepler},
     {"b10", "004 Figs 11-13",
      "sine-Gordon breather: LF unstable at dt = dx, EC and MS stable; at dt = 2 dx EC blows "
      "up, MS stays bounded",

@@ -118,3 +118,26 @@ Test(cli_json, reduction_double_spherical_pendulum) {
   cJSON_Delete(o);
   run_output_free(&r);
 }
+
+/* docs/mimetic.md, Kepler e = 0.6: MCI bounded at 5.5e-5, MGI 3e-15 */
+Test(cli_json, mimetic_kepler) {
+  run_output r = run_cli("mimetic kepler --no-plot --json --out o");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  const cJSON *runs = cJSON_GetObjectItemCaseSensitive(o, "runs");
+  cr_assert_eq(cJSON_GetArraySize(runs), 5);
+  const cJSON *mci = cJSON_GetArrayItem(runs, 0), *mgi = cJSON_GetArrayItem(runs, 1);
+  cr_expect_str_eq(json_string(mci, "method"), "mimetic-canonical-2");
+  cr_expect_eq(json_number(mci, "steps"), 1000);
+  cr_expect_float_eq(json_number(mci, "max_abs_invariant_error"), 5.53e-5, 5e-7);
+  cr_expect_lt(json_number(mgi, "max_abs_invariant_error"), 1e-14);
+  const cJSON *conv = cJSON_GetObjectItemCaseSensitive(o, "convergence");
+  cr_expect_float_eq(json_number(cJSON_GetObjectItemCaseSensitive(conv, "mimetic-canonical-2"),
+                                 "order"), 4.0, 0.1);
+  cr_expect_geq(json_number(o, "wall_s"), 0.0);
+  cJSON_Delete(o);
+  run_output_free(&r);
+  r = run_cli("mimetic all --no-plot --json --out o");
+  cr_expect_eq(r.status, 2);
+  run_output_free(&r);
+}
