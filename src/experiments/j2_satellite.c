@@ -137,20 +137,23 @@ static gm_status j2_discrete(double j2, double h, double t_end, track *out, doub
 }
 
 /* largest distance from the points of a to the point set of b, in the reduced (r, z) view or
- * the unreduced (x, y, z) view */
-static double set_distance(const track *a, const track *b, int reduced) {
+ * the unreduced (x, y, z) view; b's Cartesian points computed once (bx, by: b->n scratch) */
+static double set_distance(const track *a, const track *b, int reduced, double *bx, double *by) {
+  if (!reduced)
+    for (size_t j = 0; j < b->n; ++j) {
+      bx[j] = b->r[j] * cos(b->th[j]);
+      by[j] = b->r[j] * sin(b->th[j]);
+    }
   double worst = 0.0;
   for (size_t i = 0; i < a->n; ++i) {
     double best = INFINITY;
     const double ax = a->r[i] * cos(a->th[i]), ay = a->r[i] * sin(a->th[i]);
     for (size_t j = 0; j < b->n; ++j) {
       double d2;
-      if (reduced) {
+      if (reduced)
         d2 = (a->r[i] - b->r[j]) * (a->r[i] - b->r[j]);
-      } else {
-        const double bx = b->r[j] * cos(b->th[j]), by = b->r[j] * sin(b->th[j]);
-        d2 = (ax - bx) * (ax - bx) + (ay - by) * (ay - by);
-      }
+      else
+        d2 = (ax - bx[j]) * (ax - bx[j]) + (ay - by[j]) * (ay - by[j]);
       d2 += (a->z[i] - b->z[j]) * (a->z[i] - b->z[j]);
       best = fmin(best, d2);
     }
@@ -240,16 +243,25 @@ gm_status gm_experiment_j2_satellite(const gm_j2_config *c, const char *dir, gm_
       if (st == GM_OK) st = write_track(dir, name, &disc[k], err);
     }
   }
+  double *bx = NULL, *by = NULL;
+  if (st == GM_OK) {
+    bx = malloc(cont[0].n * sizeof *bx);
+    by = malloc(cont[0].n * sizeof *by);
+    if (bx == NULL || by == NULL)
+      st = gm_error_set(err, GM_ENOMEM, "j2-satellite: cannot allocate %zu points", cont[0].n);
+  }
   if (st == GM_OK) {
     for (int k = 0; k < 2; ++k) {
       r->node_drift_continuous[k] = node_drift(&cont[k]);
       r->node_drift_discrete[k] = node_drift(&disc[k]);
-      r->continuous_j2_to_continuous_0[k] = set_distance(&cont[1], &cont[0], k);
-      r->discrete_0_to_continuous_0[k] = set_distance(&disc[0], &cont[0], k);
-      r->discrete_j2_to_continuous_0[k] = set_distance(&disc[1], &cont[0], k);
-      r->discrete_j2_to_continuous_j2[k] = set_distance(&disc[1], &cont[1], k);
+      r->continuous_j2_to_continuous_0[k] = set_distance(&cont[1], &cont[0], k, bx, by);
+      r->discrete_0_to_continuous_0[k] = set_distance(&disc[0], &cont[0], k, bx, by);
+      r->discrete_j2_to_continuous_0[k] = set_distance(&disc[1], &cont[0], k, bx, by);
+      r->discrete_j2_to_continuous_j2[k] = set_distance(&disc[1], &cont[1], k, bx, by);
     }
   }
+  free(bx);
+  free(by);
   r->wall_s = gm_experiment_clock() - t0;
   for (int k = 0; k < 2; ++k) {
     track_free(&cont[k]);
