@@ -110,6 +110,149 @@ typedef struct gm_resonance_result {
 gm_status gm_experiment_resonance(size_t n_points, const char *dir, gm_resonance_result *result,
                                   gm_error *err);
 
+/* ---- E2, E3: FPU (seed 000 §2.4, Figs 2.2-2.3) ------------------------------------------ */
+
+#define GM_FPU_MAX_RUNS 8
+
+/* One method's run: max |H - H0| and |I - I0| over the samples, max over samples and j of
+ * |I_j - I_j^ref| (NAN for the reference itself), the first sample time with I3 > 0.5 (the
+ * energy exchange time scale; NAN if never), I1, I2, I3 at t = 150. */
+typedef struct gm_fpu_run_result {
+  const char *method; /* static strings */
+  const char *title;
+  double h;
+  size_t steps;
+  double max_abs_dh, max_abs_di, max_abs_dev, t_exchange;
+  double at150[3];
+  char csv[GM_EXPERIMENT_PATH_SIZE]; /* the file written, "" without a directory */
+} gm_fpu_run_result;
+
+typedef struct gm_fpu_result {
+  int long_run;
+  double t_end, sample;
+  size_t n_runs;
+  gm_fpu_run_result runs[GM_FPU_MAX_RUNS]; /* runs[0]: the Verlet h = 0.001 reference */
+  double wall_s;
+} gm_fpu_result;
+
+/* FPU with l = 3, omega = 50 (HLW I.5.1). long_run = 0 (E2): T = 200 sampled every 0.6, verlet
+ * h = 0.001 (reference), 0.03, imex h = 0.03, 0.1, 0.15, 0.2. long_run = 1 (E3): T = 4000
+ * sampled every 1.0, the reference, imex h = 0.1, the trig-* rows h = 0.1, vti h = 0.05. With
+ * dir non-NULL, writes dir/fpu[-long]-METHOD-H.csv (t, I1, I2, I3, I, abs_energy_error). */
+gm_status gm_experiment_fpu(int long_run, const char *dir, gm_fpu_result *result, gm_error *err);
+
+/* ---- J2 satellite under discrete Routh reduction (seed 001 §2.9, Figs 2.2-2.5) ------------ */
+
+typedef struct gm_j2_config {
+  double dt;    /* of the discrete Routh equations, > 0 (default 0.3); the reference uses dt/20 */
+  double t_end; /* > 0, at most 1e6 steps (default 150) */
+} gm_j2_config;
+
+gm_j2_config gm_j2_defaults(void);
+
+/* Pairs [2]: index 0 and 1 are J2 = 0 and 0.05 (node drifts, discrete_vs_rsprk) or the
+ * unreduced (x, y, z) and reduced (r, z) views (the distances: the largest distance of one
+ * orbit's points to the other's point set). */
+typedef struct gm_j2_result {
+  double r0, inclination, speed, mu; /* the initial orbit (the thesis gives none) */
+  double dt, t_end;
+  size_t steps;
+  double discrete_vs_rsprk[2];       /* discrete Routh equations against RSPRK Gauss-1 */
+  double node_drift_continuous[2], node_drift_discrete[2]; /* rad over the run */
+  double continuous_j2_to_continuous_0[2]; /* the physical precession */
+  double discrete_0_to_continuous_0[2];    /* the discretisation's */
+  double discrete_j2_to_continuous_0[2];
+  double discrete_j2_to_continuous_j2[2];
+  double wall_s;
+} gm_j2_result;
+
+/* With dir non-NULL, writes dir/j2-{0,0.05}-{continuous,discrete}.csv (t, r, z, theta, x, y). */
+gm_status gm_experiment_j2_satellite(const gm_j2_config *config, const char *dir,
+                                     gm_j2_result *result, gm_error *err);
+
+/* ---- double spherical pendulum under Routh reduction (seed 001 §2.10, Figs 2.7-2.9) ------- */
+
+typedef struct gm_dsp_config {
+  double mu;    /* momentum level (default 1) */
+  double x0[6]; /* r1, r2, phi, r1', r2', phi' with 0 < r_i < 1 (default 0.5, 0.4, 2, 0, 0, 0) */
+  double dt;    /* > 0 (default 0.01); RK4 takes dt/4 */
+  double t_end; /* > 0, at most 1e6 steps (default 20) */
+} gm_dsp_config;
+
+gm_dsp_config gm_dsp_defaults(void);
+
+typedef struct gm_dsp_result {
+  double m1, m2, l1, l2, g, mu, x0[6], dt, t_end;
+  size_t steps;
+  double energy0;                            /* the reduced energy at the start */
+  double rsprk_max_rel_energy_error, rsprk_max_rel_energy_error_first_half;
+  double rk4_max_rel_energy_error;
+  double rsprk_tenths[2], rk4_tenths[2];     /* max |E - E0|/|E0| in the first, last tenth */
+  double max_rel_rsprk_vs_sprk[4];           /* r1, r2, phi, E */
+  double min_r;                              /* smallest r_i along the run */
+  double constrained_energy0, constrained_max_rel_energy_error;
+  double wall_s;
+} gm_dsp_result;
+
+/* m1 = m2 = l1 = l2 = 1, g = 9.81. With dir non-NULL, writes dir/dsp.csv and
+ * dir/dsp-constrained.csv. */
+gm_status gm_experiment_double_spherical_pendulum(const gm_dsp_config *config, const char *dir,
+                                                  gm_dsp_result *result, gm_error *err);
+
+/* ---- seed 003 §6: the mimetic integrators' four tests ------------------------------------- */
+
+#define GM_MIMETIC_METHODS 5     /* mimetic-canonical-2, mimetic-galerkin-2, rk4, euler, symplectic-euler-a */
+#define GM_MIMETIC_CONVERGENCE 3 /* the first three: MCI, MGI, RK4 */
+#define GM_MIMETIC_LEVELS 6      /* steps conv_dt0 / 2^l */
+
+extern const char *const gm_mimetic_experiment_methods[GM_MIMETIC_METHODS];
+
+/* One test: the model and its setting, the steps of the phase portrait and of the invariant
+ * figure, the state components drawn, the invariant (NULL: the energy; else a part of an
+ * invariant's name) and the convergence study's first step and final time. */
+typedef struct gm_mimetic_info {
+  const char *name, *model, *setting; /* setting: "name=value" as printed, or NULL */
+  const char *setting_name;
+  double setting_value;
+  double dt_phase, dt_invariant, t_end;
+  size_t x, y;
+  const char *xlabel, *ylabel;
+  const char *invariant;
+  const char *invariant_label;
+  double conv_dt0, conv_t_end;
+} gm_mimetic_info;
+
+/* circular, lotka-volterra, pendulum, kepler; NULL for another name */
+const gm_mimetic_info *gm_mimetic_find(const char *name);
+
+typedef struct gm_mimetic_run {
+  const char *method; /* static */
+  double dt;
+  int status;         /* 0 ran to the end, 1 stopped on the way, -1 does not apply */
+  char why[GM_ERRMSG_SIZE + 32]; /* the reason of status != 0 */
+  double max_invariant_error;
+  char csv[GM_EXPERIMENT_PATH_SIZE]; /* "" without a directory */
+} gm_mimetic_run;
+
+typedef struct gm_mimetic_result {
+  const gm_mimetic_info *info;
+  size_t state_size;
+  size_t n_runs; /* each method at dt_phase, then (if different) at dt_invariant */
+  gm_mimetic_run runs[2 * GM_MIMETIC_METHODS];
+  int convergence_done;
+  double dts[GM_MIMETIC_LEVELS];
+  double state_error[GM_MIMETIC_CONVERGENCE][GM_MIMETIC_LEVELS];
+  double invariant_error[GM_MIMETIC_CONVERGENCE][GM_MIMETIC_LEVELS];
+  double order[GM_MIMETIC_CONVERGENCE], invariant_order[GM_MIMETIC_CONVERGENCE]; /* NAN: no fit */
+  int invariant_kept[GM_MIMETIC_CONVERGENCE]; /* the invariant at round-off (<= 1e-13) at all steps */
+  double wall_s;
+} gm_mimetic_result;
+
+/* With dir non-NULL, writes dir/NAME-METHOD-DT.csv (t, state, invariant error) and
+ * dir/NAME-convergence.csv. On an error after some runs, n_runs says how many are valid. */
+gm_status gm_experiment_mimetic(const char *name, const char *dir, gm_mimetic_result *result,
+                                gm_error *err);
+
 #ifdef __cplusplus
 }
 #endif

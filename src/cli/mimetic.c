@@ -1,5 +1,6 @@
 /* geomint mimetic EXPERIMENT: the four numerical tests of seed 003 (Palha & Gerritsma, §6),
  * with MCI and MGI of degree 2, RK4, explicit and symplectic Euler: data, figures, a table. */
+#include <cJSON.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -8,9 +9,10 @@
 #include <sys/stat.h>
 
 #include "cli/cli.h"
+#include "geomint/experiments.h"
 
 static const char usage[] =
-    "usage: geomint mimetic EXPERIMENT [--out DIR] [--no-plot]\n\n"
+    "usage: geomint mimetic EXPERIMENT [--out DIR] [--no-plot] [--json]\n\n"
     "Reproduce a numerical test of seed 003 (Palha & Gerritsma, mimetic spectral elements for\n"
     "Hamiltonian systems, section 6) with mimetic-canonical-2 (MCI), mimetic-galerkin-2 (MGI),\n"
     "rk4, euler and symplectic-euler-a:\n"
@@ -25,36 +27,18 @@ static const char usage[] =
     "prints the largest invariant error of each method and the measured orders.\n\n"
     "options:\n"
     "  --out DIR   output directory, created if missing (default mimetic-output)\n"
-    "  --no-plot   write the data only\n";
+    "  --no-plot   write the data only\n"
+    "  --json      print one JSON object (one experiment, not 'all') instead of the table\n";
 
-#define N_METHODS 5
-static const char *const method_names[N_METHODS] = {
-    "mimetic-canonical-2", "mimetic-galerkin-2", "rk4", "euler", "symplectic-euler-a"};
+#define N_METHODS GM_MIMETIC_METHODS
+#define N_CONVERGENCE GM_MIMETIC_CONVERGENCE
+#define CONVERGENCE_LEVELS GM_MIMETIC_LEVELS
+#define method_names gm_mimetic_experiment_methods
 static const char *const method_titles[N_METHODS] = {"MCI (p=2)", "MGI (p=2)", "RK4",
                                                      "explicit Euler", "symplectic Euler"};
-/* the methods of the convergence figure: MCI, MGI, RK4 */
-#define N_CONVERGENCE 3
-#define CONVERGENCE_LEVELS 6
-
-typedef struct experiment {
-  const char *name, *model, *setting; /* setting: one name=value, or NULL */
-  double dt_phase, dt_invariant, t_end;
-  size_t x, y;                        /* state components of the phase portrait */
-  const char *xlabel, *ylabel;
-  const char *invariant;              /* NULL: the energy; else the invariant's name */
-  const char *invariant_label;
-  double conv_dt0, conv_t_end;        /* convergence: steps dt0, dt0/2, ... to conv_t_end */
-} experiment;
-
-static const experiment experiments[] = {
-    {"circular", "harmonic", "q1=2", 1.0, 1.0, 100.0, 0, 1, "q", "p", NULL,
-     "|H - H0| (H = R^2/2)", 0.5, 10.0},
-    {"lotka-volterra", "lotka-volterra", NULL, 0.3, 0.3, 60.0, 0, 1, "u (prey)", "v (predator)",
-     "invariant", "|V - V0|, V = ln u - u + 2 ln v - v", 0.3, 5.0},
-    {"pendulum", "pendulum", "k=10", 0.4, 0.1, 20.0, 0, 1, "q", "p", NULL, "|H - H0|", 0.2, 1.0},
-    {"kepler", "kepler", "e=0.6", 0.1, 0.1, 100.0, 0, 1, "q1", "q2", NULL, "|H - H0|", 0.1, 1.0},
-};
-#define N_EXPERIMENTS (sizeof experiments / sizeof experiments[0])
+typedef gm_mimetic_info experiment;
+static const char *const experiment_names[] = {"circular", "lotka-volterra", "pendulum", "kepler"};
+#define N_EXPERIMENTS (sizeof experiment_names / sizeof experiment_names[0])
 
 static int make_directory(const char *dir) {
   if (mkdir(dir, 0777) == 0 || errno == EEXIST) {
@@ -63,149 +47,6 @@ static int make_directory(const char *dir) {
   }
   cli_error("mimetic", "cannot create the directory '%s': %s", dir, strerror(errno));
   return CLI_EXIT_FAILURE;
-}
-
-/* The monitored invariant of the experiment at y. */
-static double invariant_value(const experiment *ex, const gm_problem *pb, const double *y) {
-  if (ex->invariant == NULL) return gm_problem_energy(pb, y);
-  size_t k = cli_find_invariant(pb, ex->invariant);
-  return k == (size_t)-1 ? NAN : pb->invariants[k].value(pb->ctx, y);
-}
-
-typedef struct trace {
-  const experiment *ex;
-  const gm_problem *pb;
-  FILE *csv;
-  double i0, max_error;
-  size_t n;
-} trace;
-
-static int trace_observe(void *ctx, size_t step, double t, const double *y) {
-  (void)step;
-  trace *tr = ctx;
-  double e = fabs(invariant_value(tr->ex, tr->pb, y) - tr->i0);
-  if (!(e <= tr->max_error)) tr->max_error = isfinite(e) ? fmax(tr->max_error, e) : INFINITY;
-  fprintf(tr->csv, "%.17g", t);
-  for (size_t i = 0; i < tr->n; ++i) fprintf(tr->csv, ",%.17g", y[i]);
-  fprintf(tr->csv, ",%.17g\n", e);
-  return 0;
-}
-
-/* One run of a method; writes the CSV. Returns 0 when it ran to the end, 1 when the method
- * failed on the way (the CSV holds the steps before), -1 when it does not apply. */
-static int run_one(const experiment *ex, const gm_model *model, const gm_method *m, double dt,
-                   const char *csv_path, double *max_error, char *why, size_t cap) {
-  const gm_problem *pb = gm_model_problem(model);
-  gm_integrator *it = NULL;
-  gm_error err = {{0}};
-  why[0] = '\0';
-  if (gm_integrator_create(m, pb, &it, &err) != GM_OK) {
-    snprintf(why, cap, "%s", err.message);
-    return -1;
-  }
-  size_t n = gm_model_state_size(model);
-  double t0, y0[16];
-  gm_model_initial_state(model, &t0, y0);
-  FILE *csv = fopen(csv_path, "w");
-  if (csv == NULL) {
-    snprintf(why, cap, "cannot write %.200s: %s", csv_path, strerror(errno));
-    gm_integrator_free(it);
-    return 1;
-  }
-  fprintf(csv, "t");
-  for (size_t i = 0; i < n; ++i) fprintf(csv, ",y%zu", i + 1);
-  fprintf(csv, ",invariant_error\n");
-  trace tr = {ex, pb, csv, invariant_value(ex, pb, y0), 0.0, n};
-  gm_integrator_set_state(it, t0, y0);
-  gm_integrator_add_observer(it, trace_observe, &tr, 1);
-  size_t steps = (size_t)llround(ex->t_end / dt);
-  gm_status st = gm_integrator_run(it, steps, dt);
-  if (st != GM_OK) snprintf(why, cap, "stopped: %s", gm_integrator_errmsg(it));
-  fclose(csv);
-  gm_integrator_free(it);
-  *max_error = tr.max_error;
-  return st == GM_OK ? 0 : 1;
-}
-
-/* Convergence: the state error at conv_t_end (exact solution or reference run) and the largest
- * invariant error over the run, for steps dt0/2^k. */
-typedef struct convergence {
-  double dts[CONVERGENCE_LEVELS];
-  double state[N_CONVERGENCE][CONVERGENCE_LEVELS], invariant[N_CONVERGENCE][CONVERGENCE_LEVELS];
-  double order[N_CONVERGENCE], invariant_order[N_CONVERGENCE];
-} convergence;
-
-static double slope(const double *x, const double *y, size_t n) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  size_t m = 0;
-  for (size_t i = 0; i < n; ++i) {
-    if (!(y[i] > 1e-13 && isfinite(y[i]))) continue; /* above round-off only */
-    double a = log(x[i]), b = log(y[i]);
-    sx += a;
-    sy += b;
-    sxx += a * a;
-    sxy += a * b;
-    ++m;
-  }
-  return m >= 2 ? ((double)m * sxy - sx * sy) / ((double)m * sxx - sx * sx) : NAN;
-}
-
-static int measure_convergence(const experiment *ex, const gm_model *model, convergence *c) {
-  const gm_problem *pb = gm_model_problem(model);
-  double t0, y0[16];
-  gm_model_initial_state(model, &t0, y0);
-  for (size_t k = 0; k < N_CONVERGENCE; ++k) {
-    const gm_scheme sc = {gm_method_find(method_names[k]), NULL, GM_SOLVER_DEFAULT, 0};
-    gm_order_result r;
-    gm_error err = {{0}};
-    if (gm_order_measure(&sc, pb, t0, y0, t0 + ex->conv_t_end, ex->conv_dt0, CONVERGENCE_LEVELS,
-                         2.0, gm_method_find("gauss-6"), &r, &err) != GM_OK) {
-      cli_error("mimetic", "%s: convergence of %s: %s", ex->name, method_names[k], err.message);
-      return CLI_EXIT_FAILURE;
-    }
-    for (size_t l = 0; l < CONVERGENCE_LEVELS; ++l) {
-      c->dts[l] = r.dts[l];
-      c->state[k][l] = r.errors[l];
-      /* the invariant error: its largest value over the run at that step */
-      gm_integrator *it = NULL;
-      if (gm_integrator_create(sc.method, pb, &it, &err) != GM_OK) return CLI_EXIT_FAILURE;
-      gm_integrator_set_state(it, t0, y0);
-      double i0 = invariant_value(ex, pb, y0), worst = 0.0;
-      size_t steps = (size_t)llround(ex->conv_t_end / r.dts[l]);
-      for (size_t s = 0; s < steps; ++s) {
-        if (gm_integrator_step(it, r.dts[l]) != GM_OK) {
-          worst = NAN;
-          break;
-        }
-        worst = fmax(worst, fabs(invariant_value(ex, pb, gm_integrator_state(it)) - i0));
-      }
-      c->invariant[k][l] = worst;
-      gm_integrator_free(it);
-    }
-    c->order[k] = slope(c->dts, c->state[k], CONVERGENCE_LEVELS);
-    c->invariant_order[k] = slope(c->dts, c->invariant[k], CONVERGENCE_LEVELS);
-  }
-  return CLI_EXIT_OK;
-}
-
-static int write_convergence_csv(const char *path, const convergence *c) {
-  FILE *f = fopen(path, "w");
-  if (f == NULL) {
-    cli_error("mimetic", "cannot write %s: %s", path, strerror(errno));
-    return CLI_EXIT_FAILURE;
-  }
-  fprintf(f, "dt");
-  for (size_t k = 0; k < N_CONVERGENCE; ++k)
-    fprintf(f, ",%s_state_error,%s_invariant_error", method_names[k], method_names[k]);
-  fprintf(f, "\n");
-  for (size_t l = 0; l < CONVERGENCE_LEVELS; ++l) {
-    fprintf(f, "%.17g", c->dts[l]);
-    for (size_t k = 0; k < N_CONVERGENCE; ++k)
-      fprintf(f, ",%.17g,%.17g", c->state[k][l], c->invariant[k][l]);
-    fprintf(f, "\n");
-  }
-  fclose(f);
-  return CLI_EXIT_OK;
 }
 
 /* The three figures, by one gnuplot script written next to the data. */
@@ -277,81 +118,117 @@ static int draw(const char *dir, const experiment *ex, const char csv[][4096], c
   return CLI_EXIT_OK;
 }
 
-static int run_experiment(const experiment *ex, const char *dir, int plot) {
-  gm_model *model = NULL;
-  cli_settings settings = {ex->setting != NULL ? 1u : 0u, {ex->setting}};
-  int rc = cli_open_model("mimetic", ex->model, &settings, &model);
-  if (rc != CLI_EXIT_OK) return rc;
-  static char csv[2 * N_METHODS][4096];
-  int ran[2 * N_METHODS + 1] = {0};
-  double errors[2 * N_METHODS];
-  ran[2 * N_METHODS] = (int)gm_model_state_size(model); /* the CSV column of the error */
-  printf("%s (seed 003 section 6): %s%s%s\n", ex->name, ex->model, ex->setting ? ", " : "",
-         ex->setting ? ex->setting : "");
-  printf("  %-20s %8s %16s   %s\n", "method", "dt", "max |dI|", "note");
-  for (size_t pass = 0; pass < 2; ++pass) {
-    double dt = pass == 0 ? ex->dt_phase : ex->dt_invariant;
-    if (pass == 1 && dt == ex->dt_phase) { /* one run serves both figures */
-      for (size_t k = 0; k < N_METHODS; ++k) {
-        memcpy(csv[N_METHODS + k], csv[k], sizeof csv[k]);
-        ran[N_METHODS + k] = ran[k];
-      }
-      break;
-    }
-    for (size_t k = 0; k < N_METHODS; ++k) {
-      char why[GM_ERRMSG_SIZE + 32];
-      snprintf(csv[pass * N_METHODS + k], sizeof csv[0], "%s/%s-%s-%g.csv", dir, ex->name,
-               method_names[k], dt);
-      int r = run_one(ex, model, gm_method_find(method_names[k]), dt, csv[pass * N_METHODS + k],
-                      &errors[pass * N_METHODS + k], why, sizeof why);
-      ran[pass * N_METHODS + k] = r >= 0;
-      if (r < 0)
-        printf("  %-20s %8g %16s   not applicable: %s\n", method_names[k], dt, "-", why);
-      else
-        printf("  %-20s %8g %16.3e   %s\n", method_names[k], dt, errors[pass * N_METHODS + k],
-               why);
-    }
+static int mimetic_json(const gm_mimetic_result *r) {
+  cJSON *j = cJSON_CreateObject();
+  cJSON_AddStringToObject(j, "experiment", r->info->name);
+  cJSON_AddStringToObject(j, "model", r->info->model);
+  cJSON *runs = cJSON_AddArrayToObject(j, "runs");
+  for (size_t i = 0; i < r->n_runs; ++i) {
+    const gm_mimetic_run *u = &r->runs[i];
+    cJSON *x = cJSON_CreateObject();
+    cJSON_AddStringToObject(x, "method", u->method);
+    cJSON_AddNumberToObject(x, "dt", u->dt);
+    cJSON_AddNumberToObject(x, "steps", (double)llround(r->info->t_end / u->dt));
+    cJSON_AddStringToObject(x, "status", u->status == 0 ? "ok" : u->status > 0 ? "stopped"
+                                                                              : "not applicable");
+    if (u->status != 0) cJSON_AddStringToObject(x, "why", u->why);
+    cJSON_AddItemToObject(x, "max_abs_invariant_error",
+                          u->status >= 0 ? cli_json_number(u->max_invariant_error) : cJSON_CreateNull());
+    if (u->csv[0] != '\0') cJSON_AddStringToObject(x, "csv", u->csv);
+    cJSON_AddItemToArray(runs, x);
   }
-  convergence c;
-  char conv_csv[4096];
-  snprintf(conv_csv, sizeof conv_csv, "%s/%s-convergence.csv", dir, ex->name);
-  if ((rc = measure_convergence(ex, model, &c)) == CLI_EXIT_OK)
-    rc = write_convergence_csv(conv_csv, &c);
-  if (rc == CLI_EXIT_OK) {
+  cJSON *conv = cJSON_AddObjectToObject(j, "convergence");
+  cJSON_AddNumberToObject(conv, "t_end", r->info->conv_t_end);
+  cJSON_AddItemToObject(conv, "dt", cli_json_numbers(r->dts, CONVERGENCE_LEVELS));
+  for (size_t k = 0; k < N_CONVERGENCE; ++k) {
+    cJSON *m = cJSON_AddObjectToObject(conv, method_names[k]);
+    cJSON_AddItemToObject(m, "state_error", cli_json_numbers(r->state_error[k], CONVERGENCE_LEVELS));
+    cJSON_AddItemToObject(m, "max_abs_invariant_error",
+                          cli_json_numbers(r->invariant_error[k], CONVERGENCE_LEVELS));
+    cJSON_AddItemToObject(m, "order", cli_json_number(r->order[k]));
+    cJSON_AddItemToObject(m, "invariant_order", cli_json_number(r->invariant_order[k]));
+    cJSON_AddBoolToObject(m, "invariant_at_round_off", r->invariant_kept[k]);
+  }
+  cJSON_AddNumberToObject(j, "wall_s", r->wall_s);
+  return cli_json_print(j);
+}
+
+/* src/experiments/mimetic.c computes; here the table (or --json) and the figures */
+static int run_experiment(const char *name, const char *dir, int plot, int json) {
+  static gm_mimetic_result r;
+  gm_error err = {{0}};
+  const gm_status st = gm_experiment_mimetic(name, dir, &r, &err);
+  const experiment *ex = r.info;
+  if (ex == NULL) {
+    cli_error("mimetic", "%s", err.message);
+    return CLI_EXIT_FAILURE;
+  }
+  if (json) {
+    if (st != GM_OK) {
+      cli_error("mimetic", "%s", err.message);
+      return CLI_EXIT_FAILURE;
+    }
+    const int rc = mimetic_json(&r);
+    if (rc != CLI_EXIT_OK) return rc;
+  } else {
+    printf("%s (seed 003 section 6): %s%s%s\n", ex->name, ex->model, ex->setting ? ", " : "",
+           ex->setting ? ex->setting : "");
+    printf("  %-20s %8s %16s   %s\n", "method", "dt", "max |dI|", "note");
+    for (size_t i = 0; i < r.n_runs; ++i) {
+      const gm_mimetic_run *u = &r.runs[i];
+      if (u->status < 0)
+        printf("  %-20s %8g %16s   not applicable: %s\n", u->method, u->dt, "-", u->why);
+      else
+        printf("  %-20s %8g %16.3e   %s\n", u->method, u->dt, u->max_invariant_error, u->why);
+    }
+    if (st != GM_OK) {
+      cli_error("mimetic", "%s", err.message);
+      return CLI_EXIT_FAILURE;
+    }
     printf("  convergence to t = %g, dt = %g .. %g: measured orders (state, invariant)\n",
-           ex->conv_t_end, c.dts[0], c.dts[CONVERGENCE_LEVELS - 1]);
+           ex->conv_t_end, r.dts[0], r.dts[CONVERGENCE_LEVELS - 1]);
     for (size_t k = 0; k < N_CONVERGENCE; ++k) {
       /* an invariant kept to round-off at every step has no order to fit */
       char inv[32], state[32];
-      int kept = 1;
-      for (size_t l = 0; l < CONVERGENCE_LEVELS; ++l) kept &= c.invariant[k][l] <= 1e-13;
-      if (isfinite(c.invariant_order[k]))
-        snprintf(inv, sizeof inv, "%8.2f", c.invariant_order[k]);
+      if (isfinite(r.invariant_order[k]))
+        snprintf(inv, sizeof inv, "%8.2f", r.invariant_order[k]);
       else
-        snprintf(inv, sizeof inv, "%s", kept ? "round-off" : "   failed");
-      if (isfinite(c.order[k]))
-        snprintf(state, sizeof state, "%8.2f", c.order[k]);
+        snprintf(inv, sizeof inv, "%s", r.invariant_kept[k] ? "round-off" : "   failed");
+      if (isfinite(r.order[k]))
+        snprintf(state, sizeof state, "%8.2f", r.order[k]);
       else
         snprintf(state, sizeof state, "%s", "   failed");
       printf("  %-20s %s %s\n", method_names[k], state, inv);
     }
   }
-  if (rc == CLI_EXIT_OK && plot) {
-    rc = draw(dir, ex, (const char(*)[4096])csv, ran, c.dts);
-    if (rc == CLI_EXIT_OK)
-      printf("  figures: %s/%s-{phase,invariant,convergence}.png\n", dir, ex->name);
+  if (!plot) return CLI_EXIT_OK;
+  /* the figures' inputs: the phase runs, the invariant runs (the same when one step serves) */
+  static char csv[2 * N_METHODS][4096];
+  int ran[2 * N_METHODS + 1] = {0};
+  ran[2 * N_METHODS] = (int)r.state_size; /* the CSV column of the error */
+  for (size_t i = 0; i < r.n_runs; ++i) {
+    snprintf(csv[i], sizeof csv[i], "%s", r.runs[i].csv);
+    ran[i] = r.runs[i].status >= 0;
   }
-  gm_model_free(model);
+  if (r.n_runs == N_METHODS)
+    for (size_t k = 0; k < N_METHODS; ++k) {
+      memcpy(csv[N_METHODS + k], csv[k], sizeof csv[k]);
+      ran[N_METHODS + k] = ran[k];
+    }
+  int rc = draw(dir, ex, (const char(*)[4096])csv, ran, r.dts);
+  if (rc == CLI_EXIT_OK && !json)
+    printf("  figures: %s/%s-{phase,invariant,convergence}.png\n", dir, ex->name);
   return rc;
 }
 
 static int mimetic_main(int argc, char **argv) {
   const char *out = "mimetic-output", *positional[1] = {NULL};
-  int no_plot = 0;
+  int no_plot = 0, json = 0;
   size_t n_positional = 0;
   cli_option options[] = {{"--out", CLI_ARG_STRING, &out, 0},
-                          {"--no-plot", CLI_ARG_FLAG, &no_plot, 0}};
-  int rc = cli_parse("mimetic", argc, argv, options, 2, positional, 1, &n_positional);
+                          {"--no-plot", CLI_ARG_FLAG, &no_plot, 0},
+                          {"--json", CLI_ARG_FLAG, &json, 0}};
+  int rc = cli_parse("mimetic", argc, argv, options, 3, positional, 1, &n_positional);
   if (rc == CLI_HELP) {
     fputs(usage, stdout);
     return CLI_EXIT_OK;
@@ -364,10 +241,14 @@ static int mimetic_main(int argc, char **argv) {
   const int all = strcmp(positional[0], "all") == 0;
   size_t chosen = N_EXPERIMENTS;
   for (size_t k = 0; k < N_EXPERIMENTS; ++k)
-    if (strcmp(positional[0], experiments[k].name) == 0) chosen = k;
+    if (strcmp(positional[0], experiment_names[k]) == 0) chosen = k;
   if (!all && chosen == N_EXPERIMENTS) {
     cli_error("mimetic", "unknown experiment '%s': circular, lotka-volterra, pendulum, kepler "
               "or all", positional[0]);
+    return CLI_EXIT_USAGE;
+  }
+  if (json && all) {
+    cli_error("mimetic", "--json prints one experiment's object: name one, not 'all'");
     return CLI_EXIT_USAGE;
   }
   if (strchr(out, '\'') != NULL) {
@@ -380,7 +261,7 @@ static int mimetic_main(int argc, char **argv) {
   }
   if ((rc = make_directory(out)) != CLI_EXIT_OK) return rc;
   for (size_t k = 0; k < N_EXPERIMENTS && rc == CLI_EXIT_OK; ++k)
-    if (all || k == chosen) rc = run_experiment(&experiments[k], out, !no_plot);
+    if (all || k == chosen) rc = run_experiment(experiment_names[k], out, !no_plot, json);
   return rc;
 }
 

@@ -37,7 +37,7 @@ static const char usage[] =
     "  --points N   resonance: number of values of omega h / pi (default 900, at most 20000:\n"
     "               about 17 ms each)\n"
     "  --no-plot    write the data only\n"
-    "  --json       (resonance) print one JSON object instead of the text\n";
+    "  --json       (resonance, fpu, fpu-long) print one JSON object instead of the text\n";
 
 #define CMD "oscillatory"
 
@@ -146,160 +146,87 @@ static int experiment_resonance(const char *dir, size_t n_points, int plot, int 
 
 /* ---- E2, E3: FPU ------------------------------------------------------------------------- */
 
-typedef struct {
-  const char *method;
-  double h;
-  const char *title;
-} fpu_run;
-
-typedef struct {
-  const gm_problem *pb;
-  FILE *csv;
-  double h0, i0;
-  double max_di, max_dh;
-  double *samples;   /* I1, I2, I3, I per sample (reference run: stored; others: compared) */
-  size_t n_samples, cap;
-  const double *reference; /* NULL for the reference run */
-  double max_dev;          /* max over samples and j of |I_j − I_j^ref| */
-  double at150[4];
-  double t_exchange;       /* first sample time with I3 > 0.5: the energy exchange time scale */
-} fpu_trace;
-
-static int fpu_observe(void *ctx, size_t step, double t, const double *y) {
-  (void)step;
-  fpu_trace *tr = ctx;
-  const gm_problem *pb = tr->pb;
-  double v[4];
-  for (size_t j = 0; j < 4; ++j) v[j] = pb->invariants[j].value(pb->ctx, y);
-  const double dh = fabs(gm_problem_energy(pb, y) - tr->h0);
-  tr->max_dh = fmax(tr->max_dh, dh);
-  tr->max_di = fmax(tr->max_di, fabs(v[3] - tr->i0));
-  if (fabs(t - 150.0) < 1e-6) memcpy(tr->at150, v, sizeof v);
-  if (v[2] > 0.5 && !(tr->t_exchange >= 0.0)) tr->t_exchange = t;
-  if (tr->n_samples < tr->cap) {
-    double *s = tr->samples + 4 * tr->n_samples;
-    if (tr->reference != NULL) {
-      for (size_t j = 0; j < 4; ++j)
-        tr->max_dev = fmax(tr->max_dev, fabs(v[j] - tr->reference[4 * tr->n_samples + j]));
-    } else {
-      memcpy(s, v, sizeof v);
-    }
-    tr->n_samples++;
-  }
-  if (tr->csv != NULL)
-    fprintf(tr->csv, "%.10g,%.10g,%.10g,%.10g,%.10g,%.6e\n", t, v[0], v[1], v[2], v[3], dh);
-  return 0;
-}
-
-/* One FPU run sampled every `sample` time units (a multiple of h). */
-static int fpu_simulate(const gm_model *model, const fpu_run *r, double t_end, double sample,
-                        const char *csv_path, fpu_trace *tr) {
-  gm_integrator *it = start(model, r->method, 0);
-  if (it == NULL) return CLI_EXIT_USAGE;
-  const gm_problem *pb = gm_model_problem(model);
-  double t0, y0[64];
-  gm_model_initial_state(model, &t0, y0);
-  tr->pb = pb;
-  tr->h0 = gm_problem_energy(pb, y0);
-  tr->i0 = pb->invariants[3].value(pb->ctx, y0);
-  tr->csv = csv_path != NULL ? open_file(csv_path) : NULL;
-  if (csv_path != NULL && tr->csv == NULL) {
-    gm_integrator_free(it);
-    return CLI_EXIT_FAILURE;
-  }
-  if (tr->csv) fprintf(tr->csv, "t,I1,I2,I3,I,abs_energy_error\n");
-  const size_t every = (size_t)llround(sample / r->h), n = (size_t)llround(t_end / r->h);
-  if (fabs((double)every * r->h - sample) > 1e-9 * sample) {
-    cli_error(CMD, "%s: h = %g does not divide the sampling interval %g", r->method, r->h,
-              sample);
-    gm_integrator_free(it);
-    if (tr->csv) fclose(tr->csv);
-    return CLI_EXIT_USAGE;
-  }
-  gm_integrator_add_observer(it, fpu_observe, tr, every);
-  gm_status st = gm_integrator_run(it, n, r->h);
-  if (st != GM_OK) cli_error(CMD, "%s h = %g: %s", r->method, r->h, gm_integrator_errmsg(it));
-  if (tr->csv) fclose(tr->csv);
-  gm_integrator_free(it);
-  return st == GM_OK ? CLI_EXIT_OK : CLI_EXIT_FAILURE;
-}
-
 static int open_fpu(gm_model **model) {
   return cli_open_model(CMD, "fpu", &(cli_settings){0, {NULL}}, model);
 }
 
-static int fpu_figure(const char *dir, const char *name, const char *title, const fpu_run *runs,
-                      size_t n_runs, char csv[][4096], double t_end) {
+static int fpu_figure(const char *dir, const char *name, const char *title,
+                      const gm_fpu_result *r) {
   char script[4096];
   snprintf(script, sizeof script, "%s/%s.gp", dir, name);
   FILE *g = open_file(script);
   if (g == NULL) return CLI_EXIT_FAILURE;
-  const size_t rows = (n_runs + 1) / 2;
+  const size_t rows = (r->n_runs + 1) / 2;
   fprintf(g, "set terminal pngcairo size 1100,%zu font ',10'\nset datafile separator ','\n"
              "set output '%s/%s.png'\nset multiplot layout %zu,2 title '%s'\n"
              "set xrange [0:%g]\nset yrange [0:1.5]\nset key top right horizontal\n",
-          260 * rows + 40, dir, name, rows, title, t_end);
-  for (size_t k = 0; k < n_runs; ++k)
+          260 * rows + 40, dir, name, rows, title, r->t_end);
+  for (size_t k = 0; k < r->n_runs; ++k)
     fprintf(g, "set title '%s'\nplot '%s' every ::1 using 1:2 with lines title 'I_1', '' every "
                "::1 using 1:3 with lines title 'I_2', '' every ::1 using 1:4 with lines title "
                "'I_3', '' every ::1 using 1:5 with lines lw 1.5 lc rgb 'black' title 'I'\n",
-            runs[k].title, csv[k]);
+            r->runs[k].title, r->runs[k].csv);
   fprintf(g, "unset multiplot\n");
   fclose(g);
   return run_gnuplot_script(script);
 }
 
-static int experiment_fpu(const char *dir, int plot, int long_run) {
-  static const fpu_run short_runs[] = {
-      {"verlet", 0.001, "Verlet h = 0.001 (reference)"}, {"verlet", 0.03, "Verlet h = 0.03"},
-      {"imex", 0.03, "IMEX h = 0.03"},                   {"imex", 0.1, "IMEX h = 0.1"},
-      {"imex", 0.15, "IMEX h = 0.15"},                   {"imex", 0.2, "IMEX h = 0.2"}};
-  static const fpu_run long_runs[] = {
-      {"verlet", 0.001, "Verlet h = 0.001 (reference)"},
-      {"imex", 0.1, "IMEX h = 0.1"},
-      {"trig-gautschi", 0.1, "trig-gautschi h = 0.1"},
-      {"trig-deuflhard", 0.1, "trig-deuflhard h = 0.1"},
-      {"trig-garcia-archilla", 0.1, "trig-garcia-archilla h = 0.1"},
-      {"trig-hochbruck-lubich", 0.1, "trig-hochbruck-lubich h = 0.1"},
-      {"trig-hairer-lubich", 0.1, "trig-hairer-lubich h = 0.1"},
-      {"vti", 0.05, "vti h = 0.05"}};
-  const fpu_run *runs = long_run ? long_runs : short_runs;
-  const size_t n_runs = long_run ? sizeof long_runs / sizeof long_runs[0]
-                                 : sizeof short_runs / sizeof short_runs[0];
-  const double t_end = long_run ? 4000.0 : 200.0, sample = long_run ? 1.0 : 0.6;
-  const char *name = long_run ? "fpu-long" : "fpu";
-  gm_model *model = NULL;
-  int rc = open_fpu(&model);
-  if (rc != CLI_EXIT_OK) return rc;
-  const size_t cap = (size_t)(t_end / sample) + 2;
-  double *ref = calloc(4 * cap, sizeof *ref), *scratch = calloc(4 * cap, sizeof *scratch);
-  static char csv[8][4096];
-  printf("%s (seed 000 Fig %s): FPU l = 3, omega = 50, T = %g; I = I1 + I2 + I3, I(0) = 1\n",
-         name, long_run ? "2.3" : "2.2", t_end);
-  printf("  %-24s %7s %11s %11s %14s %9s   %s\n", "method", "h", "max |dH|", "max |dI|",
-         "max |Ij - ref|", "t(I3>.5)", "I1, I2, I3 at t = 150");
-  for (size_t k = 0; k < n_runs && rc == CLI_EXIT_OK; ++k) {
-    snprintf(csv[k], sizeof csv[k], "%s/%s-%s-%g.csv", dir, name, runs[k].method, runs[k].h);
-    fpu_trace tr = {0};
-    tr.t_exchange = NAN;
-    tr.samples = k == 0 ? ref : scratch;
-    tr.cap = cap;
-    tr.reference = k == 0 ? NULL : ref;
-    rc = fpu_simulate(model, &runs[k], t_end, sample, csv[k], &tr);
-    if (rc != CLI_EXIT_OK) break;
-    char dev[32];
-    snprintf(dev, sizeof dev, k == 0 ? "(reference)" : "%.3e", tr.max_dev);
-    printf("  %-24s %7g %11.3e %11.3e %14s %9.1f   %.3f %.3f %.3f\n", runs[k].method, runs[k].h,
-           tr.max_dh, tr.max_di, dev, tr.t_exchange, tr.at150[0], tr.at150[1], tr.at150[2]);
+static int fpu_json(const char *name, const gm_fpu_result *r) {
+  cJSON *j = cJSON_CreateObject();
+  cJSON_AddStringToObject(j, "experiment", name);
+  cJSON_AddNumberToObject(j, "t_end", r->t_end);
+  cJSON_AddNumberToObject(j, "sample", r->sample);
+  cJSON *runs = cJSON_AddArrayToObject(j, "runs");
+  for (size_t k = 0; k < r->n_runs; ++k) {
+    const gm_fpu_run_result *o = &r->runs[k];
+    cJSON *x = cJSON_CreateObject();
+    cJSON_AddStringToObject(x, "method", o->method);
+    cJSON_AddNumberToObject(x, "h", o->h);
+    cJSON_AddNumberToObject(x, "steps", (double)o->steps);
+    cJSON_AddItemToObject(x, "max_abs_dH", cli_json_number(o->max_abs_dh));
+    cJSON_AddItemToObject(x, "max_abs_dI", cli_json_number(o->max_abs_di));
+    cJSON_AddItemToObject(x, "max_abs_dev_reference", cli_json_number(o->max_abs_dev));
+    cJSON_AddItemToObject(x, "t_exchange", cli_json_number(o->t_exchange));
+    if (!r->long_run) cJSON_AddItemToObject(x, "I_at_150", cli_json_numbers(o->at150, 3));
+    cJSON_AddStringToObject(x, "csv", o->csv);
+    cJSON_AddItemToArray(runs, x);
   }
-  free(ref);
-  free(scratch);
-  gm_model_free(model);
-  if (rc != CLI_EXIT_OK || !plot) return rc;
+  cJSON_AddNumberToObject(j, "wall_s", r->wall_s);
+  return cli_json_print(j);
+}
+
+/* E2, E3 (src/experiments/fpu.c): the table, or --json, and the figure */
+static int experiment_fpu(const char *dir, int plot, int long_run, int json) {
+  const char *name = long_run ? "fpu-long" : "fpu";
+  static gm_fpu_result r;
+  gm_error err = {{0}};
+  gm_status st = gm_experiment_fpu(long_run, dir, &r, &err);
+  if (st != GM_OK) {
+    cli_error(CMD, "%s", err.message);
+    return st == GM_EINVAL ? CLI_EXIT_USAGE : CLI_EXIT_FAILURE;
+  }
+  if (json) {
+    const int rc = fpu_json(name, &r);
+    if (rc != CLI_EXIT_OK) return rc;
+  } else {
+    printf("%s (seed 000 Fig %s): FPU l = 3, omega = 50, T = %g; I = I1 + I2 + I3, I(0) = 1\n",
+           name, long_run ? "2.3" : "2.2", r.t_end);
+    printf("  %-24s %7s %11s %11s %14s %9s   %s\n", "method", "h", "max |dH|", "max |dI|",
+           "max |Ij - ref|", "t(I3>.5)", "I1, I2, I3 at t = 150");
+    for (size_t k = 0; k < r.n_runs; ++k) {
+      const gm_fpu_run_result *o = &r.runs[k];
+      char dev[32];
+      snprintf(dev, sizeof dev, k == 0 ? "(reference)" : "%.3e", o->max_abs_dev);
+      printf("  %-24s %7g %11.3e %11.3e %14s %9.1f   %.3f %.3f %.3f\n", o->method, o->h,
+             o->max_abs_dh, o->max_abs_di, dev, o->t_exchange, o->at150[0], o->at150[1],
+             o->at150[2]);
+    }
+  }
+  if (!plot) return CLI_EXIT_OK;
   return fpu_figure(dir, name,
                     long_run ? "FPU, T = 4000: oscillatory energies"
                              : "FPU, T = 200: oscillatory energies",
-                    runs, n_runs, csv, t_end);
+                    &r);
 }
 
 /* ---- work–precision on FPU --------------------------------------------------------------- */
@@ -726,8 +653,9 @@ static int oscillatory_main(int argc, char **argv) {
               points, GM_RESONANCE_MAX_POINTS, GM_RESONANCE_MAX_POINTS);
     return CLI_EXIT_USAGE;
   }
-  if (json && strcmp(ex, "resonance") != 0) {
-    cli_error(CMD, "--json: so far only 'resonance' prints JSON (its computation is in the "
+  if (json && strcmp(ex, "resonance") != 0 && strcmp(ex, "fpu") != 0 &&
+      strcmp(ex, "fpu-long") != 0) {
+    cli_error(CMD, "--json: resonance, fpu and fpu-long print JSON (their computation is in the "
               "library); '%s' prints a table", ex);
     return CLI_EXIT_USAGE;
   }
@@ -741,9 +669,9 @@ static int oscillatory_main(int argc, char **argv) {
   }
   if ((rc = make_directory(dir)) != CLI_EXIT_OK) return rc;
   if (all || strcmp(ex, "resonance") == 0) rc = experiment_resonance(dir, points, !no_plot, json);
-  if (rc == CLI_EXIT_OK && (all || strcmp(ex, "fpu") == 0)) rc = experiment_fpu(dir, !no_plot, 0);
+  if (rc == CLI_EXIT_OK && (all || strcmp(ex, "fpu") == 0)) rc = experiment_fpu(dir, !no_plot, 0, json);
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "fpu-long") == 0))
-    rc = experiment_fpu(dir, !no_plot, 1);
+    rc = experiment_fpu(dir, !no_plot, 1, json);
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "work-precision") == 0))
     rc = experiment_work_precision(dir, !no_plot);
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "multiscale") == 0)) rc = experiment_multiscale();

@@ -22,12 +22,13 @@ static const gm_experiment_info rows[] = {
      "exchange at h omega = 5; Verlet degrades at h omega = 1.5",
      "notes' check at t = 150: reference I = 0.013, 0.027, 0.957; IMEX h = 0.1: 0.017, 0.018, "
      "0.968, max |dH| = 0.020; Verlet h = 0.03: max |dH| = 0.65",
-     "oscillatory fpu", "3 s", "docs/oscillatory.md#fpu-seed-000-figs-22-23", NULL},
+     "oscillatory fpu", "3 s", "docs/oscillatory.md#fpu-seed-000-figs-22-23",
+     gm_experiment_run_fpu},
     {"fpu-long", "000 §2.4, Fig 2.3 (E3)",
      "IMEX h = 0.1 stays bounded to T = 4000 and keeps I; the trigonometric rows and vti beside "
      "it",
      "bounded, I correct (notes: max |dH| = 0.028, max |dI| = 0.10)", "oscillatory fpu-long",
-     "60 s", "docs/oscillatory.md#fpu-seed-000-figs-22-23", NULL},
+     "60 s", "docs/oscillatory.md#fpu-seed-000-figs-22-23", gm_experiment_run_fpu_long},
     {"multiscale", "001 §5.7.1-5.7.2",
      "the multiscale VI on the stiff spring pendulum against vi-midpoint and imex; 1-D MsFEM "
      "against P1",
@@ -63,14 +64,16 @@ static const gm_experiment_info rows[] = {
      "angle, J2's in the shape (r, z)",
      "qualitative: the reduced view separates the two precessions (no initial data, no final "
      "time)",
-     "reduction j2-satellite", "2 s", "docs/reduction.md#j2-satellite-seed-001-29", NULL},
+     "reduction j2-satellite", "2 s", "docs/reduction.md#j2-satellite-seed-001-29",
+     gm_experiment_run_j2_satellite},
     {"double-spherical-pendulum", "001 §2.10, Figs 2.7-2.9",
      "4th-order RSPRK against SPRK on the classical Routhian and RK4: bounded against drifting "
      "energy; spikes at the chart's singularity",
      "(E - E0)/E0 bounded for RSPRK, drifting for RK; RSPRK and SPRK 'agree very well' (no "
      "parameters given)",
      "reduction double-spherical-pendulum", "3 s",
-     "docs/reduction.md#double-spherical-pendulum-seed-001-210", NULL},
+     "docs/reduction.md#double-spherical-pendulum-seed-001-210",
+     gm_experiment_run_double_spherical_pendulum},
     {"phases", "001 ch. 4",
      "geometric phases against closed forms: Foucault, a spherical cap, Montgomery's rigid-body "
      "phase, a shape loop, the tet-mesh Levi-Civita holonomy",
@@ -80,19 +83,19 @@ static const gm_experiment_info rows[] = {
      "MCI and MGI keep R to round-off; explicit Euler spirals out, RK4 in; rate 4",
      "MCI, MGI keep R to machine precision; rate 4; 'symplectic Euler diverges' (a caption "
      "error: stable for dt < 2)",
-     "mimetic circular", "1 s", "docs/mimetic.md", NULL},
+     "mimetic circular", "1 s", "docs/mimetic.md", gm_experiment_run_mimetic_circular},
     {"mimetic-lotka-volterra", "003 §6.2",
      "neither mimetic scheme keeps V on this Poisson system; its error grows slowly",
      "MCI, MGI and RK4 similar, V not preserved, rate 4, 'no advantage'",
-     "mimetic lotka-volterra", "1 s", "docs/mimetic.md", NULL},
+     "mimetic lotka-volterra", "1 s", "docs/mimetic.md", gm_experiment_run_mimetic_lotka_volterra},
     {"mimetic-pendulum", "003 §6.3, Fig 14",
      "MGI keeps H to round-off, MCI bounded; H-error orders", "MGI H exact; MCI bounded; "
      "H-error orders MCI 4, RK4 5",
-     "mimetic pendulum", "1 s", "docs/mimetic.md", NULL},
+     "mimetic pendulum", "1 s", "docs/mimetic.md", gm_experiment_run_mimetic_pendulum},
     {"mimetic-kepler", "003 §6.4",
      "Kepler e = 0.6: MGI keeps H, MCI bounded, RK4 loses energy",
      "MGI H exact, MCI bounded; orders MCI 4, RK4 about 5", "mimetic kepler", "2 s",
-     "docs/mimetic.md", NULL},
+     "docs/mimetic.md", gm_experiment_run_mimetic_kepler},
     {"b10", "004 Figs 11-13",
      "sine-Gordon breather: LF unstable at dt = dx, EC and MS stable; at dt = 2 dx EC blows "
      "up, MS stays bounded",

@@ -60,8 +60,84 @@ Test(cli_json, oscillatory_resonance) {
   cr_expect_eq(json_number(o, "impulse_max_at"), 0.9995);
   cJSON_Delete(o);
   run_output_free(&r);
-  r = run_cli("oscillatory fpu --json --no-plot --out o");
+  r = run_cli("oscillatory multiscale --json --no-plot --out o");
   cr_expect_eq(r.status, 2);
   cr_expect(strstr(r.err, "--json") != NULL, "%s", r.err);
+  run_output_free(&r);
+}
+
+/* docs/oscillatory.md: imex h = 0.1 max |dH| 1.5e-2, I at t = 150 0.017 0.018 0.968 */
+Test(cli_json, oscillatory_fpu) {
+  run_output r = run_cli("oscillatory fpu --no-plot --json --out o");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  cr_expect_eq(json_number(o, "t_end"), 200);
+  const cJSON *runs = cJSON_GetObjectItemCaseSensitive(o, "runs");
+  cr_assert_eq(cJSON_GetArraySize(runs), 6);
+  const cJSON *imex = cJSON_GetArrayItem(runs, 3);
+  cr_expect_str_eq(json_string(imex, "method"), "imex");
+  cr_expect_eq(json_number(imex, "steps"), 2000);
+  cr_expect_float_eq(json_number(imex, "max_abs_dH"), 1.5e-2, 5e-4);
+  const cJSON *at150 = cJSON_GetObjectItemCaseSensitive(imex, "I_at_150");
+  cr_expect_float_eq(cJSON_GetArrayItem(at150, 2)->valuedouble, 0.968, 5e-4);
+  cr_expect(cJSON_IsNull(cJSON_GetObjectItemCaseSensitive(cJSON_GetArrayItem(runs, 0),
+                                                          "max_abs_dev_reference")));
+  cr_expect_geq(json_number(o, "wall_s"), 0.0);
+  cJSON_Delete(o);
+  run_output_free(&r);
+}
+
+/* docs/reduction.md: node drift -1.358 (continuous J2 = 0.05), +0.074 (discrete J2 = 0) */
+Test(cli_json, reduction_j2_satellite) {
+  run_output r = run_cli("reduction j2-satellite --no-plot --json --out o");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  cr_expect_eq(json_number(o, "steps"), 500);
+  const cJSON *c = cJSON_GetObjectItemCaseSensitive(o, "node_drift_continuous");
+  const cJSON *d = cJSON_GetObjectItemCaseSensitive(o, "node_drift_discrete");
+  cr_expect_float_eq(cJSON_GetArrayItem(c, 1)->valuedouble, -1.358, 5e-4);
+  cr_expect_float_eq(cJSON_GetArrayItem(d, 0)->valuedouble, 0.074, 5e-4);
+  cr_expect_geq(json_number(o, "wall_s"), 0.0);
+  cJSON_Delete(o);
+  run_output_free(&r);
+  r = run_cli("reduction phases --json");
+  cr_expect_eq(r.status, 2);
+  cr_expect(strstr(r.err, "--json") != NULL, "%s", r.err);
+  run_output_free(&r);
+}
+
+/* docs/reduction.md: RSPRK 6.5e-5, RK4 at h/4 4.8e-7 over t = 0..20 */
+Test(cli_json, reduction_double_spherical_pendulum) {
+  run_output r = run_cli("reduction double-spherical-pendulum --no-plot --json --out o");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  cr_expect_eq(json_number(o, "steps"), 2000);
+  cr_expect_float_eq(json_number(o, "max_rel_energy_error_rsprk"), 6.5e-5, 5e-7);
+  cr_expect_float_eq(json_number(o, "max_rel_energy_error_rk4"), 4.8e-7, 5e-9);
+  cr_expect_geq(json_number(o, "wall_s"), 0.0);
+  cJSON_Delete(o);
+  run_output_free(&r);
+}
+
+/* docs/mimetic.md, Kepler e = 0.6: MCI bounded at 5.5e-5, MGI 3e-15 */
+Test(cli_json, mimetic_kepler) {
+  run_output r = run_cli("mimetic kepler --no-plot --json --out o");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  const cJSON *runs = cJSON_GetObjectItemCaseSensitive(o, "runs");
+  cr_assert_eq(cJSON_GetArraySize(runs), 5);
+  const cJSON *mci = cJSON_GetArrayItem(runs, 0), *mgi = cJSON_GetArrayItem(runs, 1);
+  cr_expect_str_eq(json_string(mci, "method"), "mimetic-canonical-2");
+  cr_expect_eq(json_number(mci, "steps"), 1000);
+  cr_expect_float_eq(json_number(mci, "max_abs_invariant_error"), 5.53e-5, 5e-7);
+  cr_expect_lt(json_number(mgi, "max_abs_invariant_error"), 1e-14);
+  const cJSON *conv = cJSON_GetObjectItemCaseSensitive(o, "convergence");
+  cr_expect_float_eq(json_number(cJSON_GetObjectItemCaseSensitive(conv, "mimetic-canonical-2"),
+                                 "order"), 4.0, 0.1);
+  cr_expect_geq(json_number(o, "wall_s"), 0.0);
+  cJSON_Delete(o);
+  run_output_free(&r);
+  r = run_cli("mimetic all --no-plot --json --out o");
+  cr_expect_eq(r.status, 2);
   run_output_free(&r);
 }
