@@ -159,6 +159,19 @@ enum { GM_FACE_XLO = 0, GM_FACE_XHI, GM_FACE_YLO, GM_FACE_YHI, GM_FACE_ZLO, GM_F
  * otherwise two sweeps. HALF_STEPS: always two sweeps (E, then H). */
 typedef enum gm_yee_sweep { GM_YEE_SWEEP_AUTO = 0, GM_YEE_SWEEP_HALF_STEPS = 1 } gm_yee_sweep;
 
+/* How ε, μ, σ are sampled on edges and faces. ANISOTROPIC (the default, as MEEP's
+ * eps_averaging): subpixel smoothing (Farjadpour et al. 2006; Kottke, Farjadpour & Johnson
+ * 2008): where an interface cuts the cell-sized box around an edge, 1/ε of the edge along axis
+ * a is n_a² ⟨1/ε⟩ + (1 − n_a²)/⟨ε⟩ (the diagonal of the inverse of the averaged tensor, n the
+ * interface normal from the shape, or from the gradient of per-cell arrays); μ on faces the
+ * same, σ its mean; second-order accurate for curved interfaces. NONE: the staircase (ε, σ the
+ * mean and 1/μ the mean of 1/μ over the cells touching the edge/face, each cell the medium at
+ * its centre). Both agree on boxes aligned with cell faces. */
+typedef enum gm_yee_smoothing {
+  GM_YEE_SMOOTHING_ANISOTROPIC = 0,
+  GM_YEE_SMOOTHING_NONE = 1
+} gm_yee_smoothing;
+
 typedef struct gm_yee_options {
   double dt;                   /* time step; <= 0: courant × the Courant limit */
   double courant;              /* fraction of the limit used when dt <= 0 (default 0.99) */
@@ -168,6 +181,7 @@ typedef struct gm_yee_options {
                                   component, coupled only through the periodic faces). */
   int n_threads;               /* OpenMP threads of the updates; 0: OpenMP's default */
   gm_yee_sweep sweep;          /* how a step walks the grid (default GM_YEE_SWEEP_AUTO) */
+  gm_yee_smoothing smoothing;  /* default GM_YEE_SMOOTHING_ANISOTROPIC */
 } gm_yee_options;
 
 gm_yee_options gm_yee_defaults(void);
