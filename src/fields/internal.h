@@ -227,6 +227,9 @@ void yee_smooth_edge(const gm_yee_materials *m, const gm_yee_layout *L, const in
 void yee_smooth_inverse_row(const gm_yee_materials *m, const gm_yee_layout *L,
                             const int periodic[3], int c, long i, long j, long k, double row[3],
                             double *eps_aa, double *sigma);
+/* Entry (a, b) of ε̃⁻¹ for the pixel centred at pos (index units: location = origin + h pos). */
+double yee_smooth_offdiag_at(const gm_yee_materials *m, const gm_yee_layout *L,
+                             const int periodic[3], const double pos[3], int a, int b);
 /* Off-diagonal coupling of the smoothed tensor (yee_aniso.c): set up at create, applied after
  * each E half step (D tracked on the coupled edges), synced when E is set. */
 gm_status yee_aniso_setup(gm_yee *s, const gm_yee_materials *m, gm_error *err);

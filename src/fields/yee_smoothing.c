@@ -299,17 +299,16 @@ static int base_box_mean(const gm_yee_materials *m, const gm_yee_layout *L,
 
 /* Averages over the pixel of component c at index ijk: ⟨ε⟩, ⟨1/ε⟩, ⟨μ⟩, ⟨1/μ⟩, ⟨σ⟩ (as
  * mean[3], mean_inv[3]) and the interface normal n (zero when the pixel holds one medium). */
-static void pixel_average(const gm_yee_materials *m, const gm_yee_layout *L,
-                          const int periodic[3], int c, const long ijk[3], double mean[3],
-                          double mean_inv[3], double n[3]) {
+static void pixel_average_at(const gm_yee_materials *m, const gm_yee_layout *L,
+                             const int periodic[3], const double pos[3], double mean[3],
+                             double mean_inv[3], double n[3]) {
   const size_t axes = gm_yee_dim_axes(L->dim);
-  double shift[3], x[3], half[3], lo[3];
-  gm_yee_component_shift(L->dim, (gm_yee_component)c, shift);
+  double x[3], half[3], lo[3];
   double r2 = 0.0, hmin = INFINITY;
   for (int a = 0; a < 3; ++a) {
     const int present = (size_t)a < axes;
-    x[a] = present ? L->origin[a] + L->h[a] * ((double)ijk[a] + shift[a]) : 0.0;
-    lo[a] = present ? (double)ijk[a] + shift[a] - 0.5 : 0.0;
+    x[a] = present ? L->origin[a] + L->h[a] * pos[a] : 0.0;
+    lo[a] = present ? pos[a] - 0.5 : 0.0;
     half[a] = present ? 0.5 * L->h[a] : 0.0;
     r2 += half[a] * half[a];
     if (present) hmin = fmin(hmin, L->h[a]);
@@ -376,6 +375,23 @@ static void pixel_average(const gm_yee_materials *m, const gm_yee_layout *L,
   }
   if (g2 > 0)
     for (size_t a = 0; a < axes; ++a) n[a] /= sqrt(g2);
+}
+
+/* The same for the pixel of component c at index ijk. */
+static void pixel_average(const gm_yee_materials *m, const gm_yee_layout *L,
+                          const int periodic[3], int c, const long ijk[3], double mean[3],
+                          double mean_inv[3], double n[3]) {
+  double shift[3], pos[3];
+  gm_yee_component_shift(L->dim, (gm_yee_component)c, shift);
+  for (int a = 0; a < 3; ++a) pos[a] = (double)ijk[a] + shift[a];
+  pixel_average_at(m, L, periodic, pos, mean, mean_inv, n);
+}
+
+double yee_smooth_offdiag_at(const gm_yee_materials *m, const gm_yee_layout *L,
+                             const int periodic[3], const double pos[3], int a, int b) {
+  double mean[3], mean_inv[3], n[3];
+  pixel_average_at(m, L, periodic, pos, mean, mean_inv, n);
+  return n[a] * n[b] * (mean_inv[0] - 1.0 / mean[0]);
 }
 
 void yee_smooth_inverse_row(const gm_yee_materials *m, const gm_yee_layout *L,
