@@ -103,7 +103,8 @@ static void convergence(gm_yee_dim dim, double f_lo, double f_hi, double target,
 
 /* TE (E in the plane, across the rod's surface): the anisotropic average with its off-diagonal
  * entries. Measured: order 3.40 smoothed (errors 4.6e-3 at N = 16 to 1.13e-4 at 48), 0.72
- * staircase (5.2e-3 to 2.7e-3, scattered). Diagonal-only smoothing measured order 1.0. */
+ * staircase (5.2e-3 to 2.7e-3, scattered). Without the off-diagonal entries the smoothed
+ * frequency drifted at first order (exploratory run, docs/maxwell.md). */
 Test(yee_smoothing, te_rod_lattice_second_order) {
   double ps, pt, es, et;
   convergence(GM_YEE_2D_TE, 0.5, 0.75, 0.63, &ps, &pt, &es, &et);
