@@ -458,6 +458,29 @@ double gm_yee_charge(const gm_yee *solver);
  * CPML. Complex fields: the sum of the real parts' and the imaginary parts' fluxes. */
 gm_status gm_yee_poynting_flux(const gm_yee *solver, int axis, size_t index, double *flux);
 
+/* ---- DFT flux spectra (yee_dft.c) --------------------------------------------------------- */
+
+/* Running Fourier transforms Ê(f) = Σ_n E(t) e^{2πi f t} Δt of the tangential E and H on the
+ * primal vertex plane `index` (1..n−1) normal to axis, each field at its own time (E^{n−½},
+ * H^n), at n_freq frequencies (copied; 0 <= f < 1/(2Δt)); the flux spectrum is
+ * Re ∫ (Ê* × Ĥ)·n dA, positive along +axis (as MEEP's flux regions). Accumulated by an
+ * observer added to the solver (every step, from the next advance): the object must stay alive
+ * while the solver advances, and is freed by the caller after. Errors (GM_EINVAL, message in
+ * gm_yee_errmsg): an axis the grid lacks, a plane at or beyond the walls or inside a CPML layer,
+ * no frequencies, one outside [0, Nyquist). */
+typedef struct gm_yee_dft_flux gm_yee_dft_flux;
+gm_status gm_yee_dft_flux_create(gm_yee *solver, int axis, size_t index, size_t n_freq,
+                                 const double *freq, gm_yee_dft_flux **out);
+void gm_yee_dft_flux_free(gm_yee_dft_flux *flux);
+size_t gm_yee_dft_flux_n_freq(const gm_yee_dft_flux *flux);
+/* flux[n_freq]: the spectrum of the fields transformed so far. */
+gm_status gm_yee_dft_flux_spectrum(const gm_yee_dft_flux *flux, double *spectrum);
+/* Subtract the transforms of a normalisation run (same grid, plane, frequencies and step), so
+ * that the spectrum is that of the scattered fields: for reflection, run without the object,
+ * keep its flux object, run with it and subtract; −spectrum is the reflected flux. */
+gm_status gm_yee_dft_flux_subtract(gm_yee_dft_flux *flux, const gm_yee_dft_flux *incident);
+const char *gm_yee_dft_flux_errmsg(const gm_yee_dft_flux *flux);
+
 /* ---- Maxwell on simplicial meshes: DEC leapfrog and AVI (seed 000 §3.4.2–3.4.3) ----------- */
 
 /* The same plan/execute shape as gm_yee: gm_mesh_maxwell_create precomputes the diagonal Hodge
