@@ -159,6 +159,19 @@ enum { GM_FACE_XLO = 0, GM_FACE_XHI, GM_FACE_YLO, GM_FACE_YHI, GM_FACE_ZLO, GM_F
  * otherwise two sweeps. HALF_STEPS: always two sweeps (E, then H). */
 typedef enum gm_yee_sweep { GM_YEE_SWEEP_AUTO = 0, GM_YEE_SWEEP_HALF_STEPS = 1 } gm_yee_sweep;
 
+/* How ε, μ, σ are sampled on edges and faces. ANISOTROPIC (the default, as MEEP's
+ * eps_averaging): subpixel smoothing (Farjadpour et al. 2006; Kottke, Farjadpour & Johnson
+ * 2008): where an interface cuts the cell-sized box around an edge, 1/ε of the edge along axis
+ * a is n_a² ⟨1/ε⟩ + (1 − n_a²)/⟨ε⟩ (the diagonal of the inverse of the averaged tensor, n the
+ * interface normal from the shape, or from the gradient of per-cell arrays); μ on faces the
+ * same, σ its mean; second-order accurate for curved interfaces. NONE: the staircase (ε, σ the
+ * mean and 1/μ the mean of 1/μ over the cells touching the edge/face, each cell the medium at
+ * its centre). Both agree on boxes aligned with cell faces. */
+typedef enum gm_yee_smoothing {
+  GM_YEE_SMOOTHING_ANISOTROPIC = 0,
+  GM_YEE_SMOOTHING_NONE = 1
+} gm_yee_smoothing;
+
 typedef struct gm_yee_options {
   double dt;                   /* time step; <= 0: courant × the Courant limit */
   double courant;              /* fraction of the limit used when dt <= 0 (default 0.99) */
@@ -168,6 +181,7 @@ typedef struct gm_yee_options {
                                   component, coupled only through the periodic faces). */
   int n_threads;               /* OpenMP threads of the updates; 0: OpenMP's default */
   gm_yee_sweep sweep;          /* how a step walks the grid (default GM_YEE_SWEEP_AUTO) */
+  gm_yee_smoothing smoothing;  /* default GM_YEE_SMOOTHING_ANISOTROPIC */
 } gm_yee_options;
 
 gm_yee_options gm_yee_defaults(void);
@@ -443,6 +457,29 @@ double gm_yee_charge(const gm_yee *solver);
  * of the leapfrog energy on either side (the discrete Poynting theorem) away from sources and
  * CPML. Complex fields: the sum of the real parts' and the imaginary parts' fluxes. */
 gm_status gm_yee_poynting_flux(const gm_yee *solver, int axis, size_t index, double *flux);
+
+/* ---- DFT flux spectra (yee_dft.c) --------------------------------------------------------- */
+
+/* Running Fourier transforms Ê(f) = Σ_n E(t) e^{2πi f t} Δt of the tangential E and H on the
+ * primal vertex plane `index` (1..n−1) normal to axis, each field at its own time (E^{n−½},
+ * H^n), at n_freq frequencies (copied; 0 <= f < 1/(2Δt)); the flux spectrum is
+ * Re ∫ (Ê* × Ĥ)·n dA, positive along +axis (as MEEP's flux regions). Accumulated by an
+ * observer added to the solver (every step, from the next advance): the object must stay alive
+ * while the solver advances, and is freed by the caller after. Errors (GM_EINVAL, message in
+ * gm_yee_errmsg): an axis the grid lacks, a plane at or beyond the walls or inside a CPML layer,
+ * no frequencies, one outside [0, Nyquist). */
+typedef struct gm_yee_dft_flux gm_yee_dft_flux;
+gm_status gm_yee_dft_flux_create(gm_yee *solver, int axis, size_t index, size_t n_freq,
+                                 const double *freq, gm_yee_dft_flux **out);
+void gm_yee_dft_flux_free(gm_yee_dft_flux *flux);
+size_t gm_yee_dft_flux_n_freq(const gm_yee_dft_flux *flux);
+/* flux[n_freq]: the spectrum of the fields transformed so far. */
+gm_status gm_yee_dft_flux_spectrum(const gm_yee_dft_flux *flux, double *spectrum);
+/* Subtract the transforms of a normalisation run (same grid, plane, frequencies and step), so
+ * that the spectrum is that of the scattered fields: for reflection, run without the object,
+ * keep its flux object, run with it and subtract; −spectrum is the reflected flux. */
+gm_status gm_yee_dft_flux_subtract(gm_yee_dft_flux *flux, const gm_yee_dft_flux *incident);
+const char *gm_yee_dft_flux_errmsg(const gm_yee_dft_flux *flux);
 
 /* ---- Maxwell on simplicial meshes: DEC leapfrog and AVI (seed 000 §3.4.2–3.4.3) ----------- */
 

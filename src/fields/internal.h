@@ -24,6 +24,7 @@ struct gm_yee_materials {
   size_t n_cells;
   double *epsilon, *mu, *sigma; /* per cell, x fastest */
   char errmsg[YEE_ERRMSG];
+  struct yee_geometry *geometry; /* shapes painted, for subpixel smoothing (yee_smoothing.c) */
 };
 
 /* A box of locations of one component: [lo, lo + cnt) per axis, in component index space. */
@@ -135,6 +136,8 @@ struct gm_yee {
   /* per-cell material copies (NULL when uniform) for diagnostics */
   double *eps_cell, *mu_cell;
   double eps0, mu0;
+  int smoothed;          /* edge ε from subpixel smoothing: yee_eps_edge reads it from cb, ca */
+  struct yee_aniso *aniso; /* off-diagonal ε̃⁻¹ coupling on cut edges (NULL: none) */
   /* per axis, per position index (extent entries, index + offset): 1/(κ h) at integer (e)
    * and half-integer (h) positions; 0 on absent axes */
   double *inv_e[3], *inv_h[3];
@@ -208,5 +211,39 @@ double yee_medium_cb_e(const gm_yee *s, int c, size_t index);
 double yee_medium_cb_h(const gm_yee *s, int c, size_t index);
 double yee_eps_edge(const gm_yee *s, int c, long i, long j, long k);
 double yee_mu_face(const gm_yee *s, int c, long i, long j, long k);
+/* Subpixel smoothing (yee_smoothing.c): the materials record the shapes painted into them;
+ * the solver asks for the smoothed ε and ⟨σ⟩ of an edge and 1/μ of a face. */
+gm_status yee_geometry_record_box(gm_yee_materials *m, const double lo[3], const double hi[3],
+                                  const gm_medium *medium);
+gm_status yee_geometry_record_sphere(gm_yee_materials *m, const double center[3], double radius,
+                                     const gm_medium *medium);
+gm_status yee_geometry_record_cylinder(gm_yee_materials *m, const double center[3],
+                                       const double unit_axis[3], double radius, double height,
+                                       const gm_medium *medium);
+void yee_geometry_reset(gm_yee_materials *m);
+void yee_geometry_free(gm_yee_materials *m);
+int yee_geometry_has_shapes(const gm_yee_materials *m);
+int yee_geometry_lossy(const gm_yee_materials *m); /* a shape has σ > 0 */
+double yee_geometry_min_em(const gm_yee_materials *m);
+void yee_smooth_edge(const gm_yee_materials *m, const gm_yee_layout *L, const int periodic[3],
+                     int c, long i, long j, long k, double *epsilon, double *sigma);
+/* Row c (an E component) of the smoothed inverse tensor ε̃⁻¹ at edge ijk, its diagonal's
+ * inverse ε_aa and ⟨σ⟩. */
+void yee_smooth_inverse_row(const gm_yee_materials *m, const gm_yee_layout *L,
+                            const int periodic[3], int c, long i, long j, long k, double row[3],
+                            double *eps_aa, double *sigma);
+/* Entry (a, b) of ε̃⁻¹ for the pixel centred at pos (index units: location = origin + h pos). */
+double yee_smooth_offdiag_at(const gm_yee_materials *m, const gm_yee_layout *L,
+                             const int periodic[3], const double pos[3], int a, int b);
+/* Off-diagonal coupling of the smoothed tensor (yee_aniso.c): set up at create, applied after
+ * each E half step (D tracked on the coupled edges), synced when E is set. */
+gm_status yee_aniso_setup(gm_yee *s, const gm_yee_materials *m, gm_error *err);
+void yee_aniso_apply(gm_yee *s);
+void yee_aniso_sync(gm_yee *s);
+void yee_aniso_free(gm_yee *s);
+/* 1/ε̃⁻¹_aa of a coupled edge, or 0 when the edge is not coupled. */
+double yee_aniso_eps(const gm_yee *s, int c, size_t q);
+void yee_smooth_face(const gm_yee_materials *m, const gm_yee_layout *L, const int periodic[3],
+                     int c, long i, long j, long k, double *inv_mu);
 
 #endif

@@ -67,6 +67,7 @@ gm_status gm_yee_advance(gm_yee *s, size_t n_steps) {
       yee_cpml_apply(s, 1);
       yee_tfsf_apply(s, 1);
       yee_sources_apply(s, 1);
+      yee_aniso_apply(s); /* off-diagonal ε̃⁻¹ of smoothed interfaces (yee_aniso.c) */
       yee_apply_ghosts_e(s);
       /* Faraday: H^n → H^{n+1} with E^{n+½} */
       yee_update_h(s);
@@ -139,6 +140,7 @@ static void finish_set(gm_yee *s, int c, int part) {
           in &= ijk[a] >= (long)b->lo[a] && ijk[a] < (long)(b->lo[a] + b->cnt[a]);
         if (!in) f[yee_idx(&s->L, ijk[0], ijk[1], ijk[2])] = 0.0;
       }
+  if (yee_is_e(c)) yee_aniso_sync(s);
   if (yee_is_e(c))
     yee_apply_ghosts_e(s);
   else

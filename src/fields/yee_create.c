@@ -40,6 +40,7 @@ gm_status gm_yee_courant_limit(const gm_yee_grid *grid, const gm_yee_materials *
     min_em = INFINITY;
     for (size_t c = 0; c < materials->n_cells; ++c)
       min_em = fmin(min_em, materials->epsilon[c] * materials->mu[c]);
+    min_em = fmin(min_em, yee_geometry_min_em(materials)); /* smoothing mixes in shapes' media */
   }
   double s = 0.0;
   for (size_t a = 0; a < gm_yee_dim_axes(grid->dim); ++a) s += 1.0 / (grid->h[a] * grid->h[a]);
@@ -105,6 +106,15 @@ void yee_face_average_inverse(const gm_yee_layout *L, const int periodic[3], int
 
 double yee_eps_edge(const gm_yee *s, int c, long i, long j, long k) {
   if (s->eps_cell == NULL) return s->eps0;
+  if (s->aniso) { /* an edge whose E is ε̃⁻¹ D with off-diagonal terms: ε̃⁻¹_aa */
+    const double e = yee_aniso_eps(s, c, yee_idx(&s->L, i, j, k));
+    if (e > 0) return e;
+  }
+  if (s->smoothed) { /* invert cb = Δt/(ε (1 + a)), ca = (1 − a)/(1 + a) */
+    const size_t q = yee_idx(&s->L, i, j, k);
+    const double a = s->ca[c] ? (1.0 - s->ca[c][q]) / (1.0 + s->ca[c][q]) : 0.0;
+    return s->dt / (s->cb[c][q] * (1.0 + a));
+  }
   double m;
   yee_edge_average(&s->L, s->periodic, c, i, j, k, s->eps_cell, &m);
   return m;
@@ -315,6 +325,10 @@ gm_status gm_yee_create(const gm_yee_grid *grid, const gm_yee_materials *materia
         s->uniform = 0;
       if (materials->sigma[c] != 0.0) s->lossy = 1;
     }
+    s->smoothed = o.smoothing == GM_YEE_SMOOTHING_ANISOTROPIC &&
+                  (!s->uniform || yee_geometry_has_shapes(materials));
+    if (s->smoothed) s->uniform = 0;
+    if (s->smoothed && yee_geometry_lossy(materials)) s->lossy = 1;
   }
   if (s->uniform) {
     const double a = sigma0 * dt / (2.0 * s->eps0);
@@ -345,21 +359,34 @@ gm_status gm_yee_create(const gm_yee_grid *grid, const gm_yee_materials *materia
             const size_t q = yee_idx(L, (long)i, (long)j, (long)k);
             if (c < 3) {
               double eps, sig;
-              yee_edge_average(L, s->periodic, c, (long)i, (long)j, (long)k, materials->epsilon,
-                               &eps);
-              yee_edge_average(L, s->periodic, c, (long)i, (long)j, (long)k, materials->sigma,
-                               &sig);
+              if (s->smoothed) {
+                yee_smooth_edge(materials, L, s->periodic, c, (long)i, (long)j, (long)k, &eps,
+                                &sig);
+              } else {
+                yee_edge_average(L, s->periodic, c, (long)i, (long)j, (long)k,
+                                 materials->epsilon, &eps);
+                yee_edge_average(L, s->periodic, c, (long)i, (long)j, (long)k,
+                                 materials->sigma, &sig);
+              }
               const double a = sig * dt / (2.0 * eps);
               s->cb[c][q] = dt / eps / (1.0 + a);
               if (s->ca[c]) s->ca[c][q] = (1.0 - a) / (1.0 + a);
             } else {
               double inv_mu;
-              yee_face_average_inverse(L, s->periodic, c - 3, (long)i, (long)j, (long)k,
-                                       materials->mu, &inv_mu);
+              if (s->smoothed)
+                yee_smooth_face(materials, L, s->periodic, c, (long)i, (long)j, (long)k, &inv_mu);
+              else
+                yee_face_average_inverse(L, s->periodic, c - 3, (long)i, (long)j, (long)k,
+                                         materials->mu, &inv_mu);
               s->cb[c][q] = dt * inv_mu;
             }
           }
     }
+  }
+  st = yee_aniso_setup(s, materials, err);
+  if (st != GM_OK) {
+    gm_yee_free(s);
+    return st;
   }
   /* 1/(κh) per axis and position (κ = 1 outside CPML layers; yee_cpml_setup grades it) */
   for (int a = 0; a < 3; ++a) {
@@ -382,6 +409,7 @@ gm_status gm_yee_create(const gm_yee_grid *grid, const gm_yee_materials *materia
 
 void gm_yee_free(gm_yee *s) {
   if (s == NULL) return;
+  yee_aniso_free(s);
   for (int p = 0; p < 2; ++p)
     for (int c = 0; c < GM_YEE_N_COMPONENTS; ++c)
       if (s->f[p][c] != s->zeros) free(s->f[p][c]);

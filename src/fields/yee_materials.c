@@ -94,6 +94,7 @@ gm_status gm_yee_materials_create(const gm_yee_grid *grid, gm_yee_materials **ou
 
 void gm_yee_materials_free(gm_yee_materials *m) {
   if (m == NULL) return;
+  yee_geometry_free(m);
   free(m->epsilon);
   free(m->mu);
   free(m->sigma);
@@ -104,6 +105,7 @@ gm_status gm_yee_materials_fill(gm_yee_materials *m, const gm_medium *medium) {
   if (m == NULL) return GM_EINVAL;
   gm_status st = medium_check(m, medium);
   if (st != GM_OK) return st;
+  yee_geometry_reset(m);
   for (size_t c = 0; c < m->n_cells; ++c) {
     m->epsilon[c] = medium->epsilon;
     m->mu[c] = medium->mu;
@@ -158,7 +160,8 @@ gm_status gm_yee_paint_box(gm_yee_materials *m, const double lo[3], const double
     b.lo[a] = lo[a];
     b.hi[a] = hi[a];
   }
-  return paint(m, inside_box, &b, medium);
+  gm_status st = yee_geometry_record_box(m, b.lo, b.hi, medium);
+  return st != GM_OK ? st : paint(m, inside_box, &b, medium);
 }
 
 typedef struct sphere_shape {
@@ -185,7 +188,8 @@ gm_status gm_yee_paint_sphere(gm_yee_materials *m, const double center[3], doubl
       return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL, "sphere: centre is not finite");
     s.c[a] = center[a];
   }
-  return paint(m, inside_sphere, &s, medium);
+  gm_status st = yee_geometry_record_sphere(m, s.c, radius, medium);
+  return st != GM_OK ? st : paint(m, inside_sphere, &s, medium);
 }
 
 typedef struct cylinder_shape {
@@ -231,7 +235,8 @@ gm_status gm_yee_paint_cylinder(gm_yee_materials *m, const double center[3],
     s.c[a] = (size_t)a < axes ? center[a] : 0.0;
     s.u[a] = axis[a] / norm;
   }
-  return paint(m, inside_cylinder, &s, medium);
+  gm_status st = yee_geometry_record_cylinder(m, s.c, s.u, radius, height, medium);
+  return st != GM_OK ? st : paint(m, inside_cylinder, &s, medium);
 }
 
 gm_status gm_yee_paint_cells(gm_yee_materials *m, const double *epsilon, const double *mu,
@@ -247,6 +252,7 @@ gm_status gm_yee_paint_cells(gm_yee_materials *m, const double *epsilon, const d
       return gm_fail(m->errmsg, sizeof m->errmsg, st, "cell %zu: %.200s", c, msg);
     }
   }
+  yee_geometry_reset(m);
   for (size_t c = 0; c < m->n_cells; ++c) {
     if (epsilon) m->epsilon[c] = epsilon[c];
     if (mu) m->mu[c] = mu[c];

@@ -950,10 +950,13 @@ gm_status gm_yee_scene_parse(const char *text, const char *name, gm_yee_scene *s
   if (rc == 0) rc = check_duplicates(&p, root);
   static const char *const keys[] = {"grid", "background", "materials", "boundaries", "pml",
                                      "bloch_k", "sources", "probes", "flux", "output", "run",
-                                     "description", NULL};
+                                     "description", "eps_averaging", NULL};
   if (rc == 0) rc = check_keys(&p, root, keys);
   if (rc == 0) rc = parse_grid(&p, root, s);
   if (rc == 0) rc = parse_materials(&p, root, s);
+  int averaging = 1; /* subpixel smoothing, on by default (MEEP's eps_averaging) */
+  if (rc == 0 && get_bool(&p, root, "eps_averaging", &averaging) < 0) rc = -1;
+  s->options.smoothing = averaging ? GM_YEE_SMOOTHING_ANISOTROPIC : GM_YEE_SMOOTHING_NONE;
   if (rc == 0) rc = parse_boundaries(&p, root, s);
   if (rc == 0 && get_vector(&p, root, "bloch_k", 0, 3, 3, 0, s->options.bloch_k) < 0) rc = -1;
   if (rc == 0) rc = parse_sources(&p, root, s);

@@ -384,6 +384,7 @@ static void strip_e(gm_yee *s, long k, long j0, long j1) {
 int yee_wavefront_eligible(const gm_yee *s) {
   if (s->L.dim != GM_YEE_3D || s->n_parts != 1 || s->n_cpml != 0 || s->n_tfsf != 0) return 0;
   if (s->fused_e1 == NULL || s->opt.sweep == GM_YEE_SWEEP_HALF_STEPS) return 0;
+  if (s->aniso != NULL) return 0; /* its pass needs the whole E half step */
   for (int a = 0; a < 3; ++a)
     if (s->periodic[a]) return 0;
   return 1;

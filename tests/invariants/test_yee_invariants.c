@@ -272,6 +272,7 @@ static void sweep_run(gm_yee_sweep sweep, int threads, double **out, size_t *siz
   gm_yee_options o = gm_yee_defaults();
   o.n_threads = threads;
   o.sweep = sweep;
+  o.smoothing = GM_YEE_SMOOTHING_NONE; /* the off-diagonal ε̃⁻¹ pass needs two sweeps */
   o.boundary[1].kind = GM_BOUNDARY_PMC;
   o.boundary[4].kind = GM_BOUNDARY_PMC;
   gm_yee *s = NULL;
