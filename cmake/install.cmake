@@ -22,6 +22,10 @@ set(GM_CONFIG_OPENMP ${OpenMP_C_FOUND})
 if(NOT GM_CONFIG_OPENMP)
   set(GM_CONFIG_OPENMP FALSE)
 endif()
+set(GM_CONFIG_MPI ${GM_MPI})
+if(NOT GM_CONFIG_MPI)
+  set(GM_CONFIG_MPI FALSE)
+endif()
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/geomintConfig.cmake.in
   ${PROJECT_BINARY_DIR}/geomintConfig.cmake
   INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/geomint)
