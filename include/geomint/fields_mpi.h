@@ -25,6 +25,7 @@
 #include <mpi.h>
 
 #include "geomint/fields.h"
+#include "geomint/yee_scene.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -85,6 +86,13 @@ gm_status gm_yee_mpi_gather_field(gm_yee_mpi *m, gm_yee_component c, int part, d
  * it, summed over ranks (MPI_Allreduce: equal to the single-process value to round-off, not
  * bitwise; the same on every rank). */
 gm_status gm_yee_mpi_get_energy(gm_yee_mpi *m, gm_yee_energy *energy);
+
+/* gm_yee_scene_build over MPI (collective; every rank loaded the same scene): the solver with
+ * the scene's point sources and probes (room for the whole run). What the distributed solver does
+ * not do yet is an error naming the JSON path (plane waves, flux planes, snapshots), never
+ * ignored. Errors as gm_yee_scene_build, with "rank r: " when one rank failed. */
+gm_status gm_yee_scene_build_mpi(gm_yee_scene *scene, const char *name, MPI_Comm comm,
+                                 const int dims[3], gm_yee_mpi **out, gm_error *err);
 
 /* Bytes sent by this rank per step in the E exchange (the performance model, docs/maxwell.md). */
 size_t gm_yee_mpi_bytes_per_step(const gm_yee_mpi *m);

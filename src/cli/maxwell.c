@@ -12,6 +12,8 @@ int mx_e4_main(int argc, char **argv);     /* maxwell_e4.c */
 static const char usage[] =
     "usage: geomint maxwell run SCENE.json [--out DIR] [--json] [--check] [--threads K]\n"
     "                           [--plot FILE.png [--plot-field C]]\n"
+    "       mpirun -np N geomint maxwell run SCENE.json [--out DIR] [--json] [--check]\n"
+    "                           [--dims AxBxC]   (built with MPI: the distributed solver)\n"
     "       geomint maxwell cavity [--dim 2|3] [--n N] [--periods P] [--out DIR] [--json]\n"
     "       geomint maxwell e4 [--n N] [--time T] [--seed S] [--out DIR] [--json]\n"
     "       geomint maxwell mesh FILE.msh | --rect NX [--avi] ... (see 'maxwell mesh --help')\n"
