@@ -87,6 +87,14 @@ gm_status gm_yee_mpi_gather_field(gm_yee_mpi *m, gm_yee_component c, int part, d
  * bitwise; the same on every rank). */
 gm_status gm_yee_mpi_get_energy(gm_yee_mpi *m, gm_yee_energy *energy);
 
+/* Checkpoint/restart (geomint/yee_checkpoint.h) of every rank's block: rank r of N writes
+ * PREFIX.rank<r>of<N> (the gm_yee_checkpoint_write format of its local solver). Restart builds
+ * the same distributed solver on the same number of ranks and process grid (a block of another
+ * size is refused by the layout check) and reads them; the run then continues bitwise as the
+ * uninterrupted one. Errors on any rank (GM_EIO, GM_EINVAL) come back on every rank. */
+gm_status gm_yee_mpi_checkpoint_write(gm_yee_mpi *m, const char *prefix);
+gm_status gm_yee_mpi_checkpoint_read(gm_yee_mpi *m, const char *prefix);
+
 /* gm_yee_scene_build over MPI (collective; every rank loaded the same scene): the solver with
  * the scene's point sources and probes (room for the whole run). What the distributed solver does
  * not do yet is an error naming the JSON path (plane waves, flux planes, snapshots), never

@@ -171,6 +171,73 @@ static void compare(const scene *sc, const int *dims) {
   gm_yee_materials_free(mat);
 }
 
+/* A run cut by a checkpoint and continued in a new solver equals the uninterrupted one. */
+static void restart(const scene *sc) {
+  gm_yee_materials *mat = sc->materials ? paint(sc) : NULL;
+  gm_error err;
+  gm_yee_mpi *a = NULL, *b = NULL;
+  CHECK(gm_yee_mpi_create(&sc->grid, mat, &sc->opt, MPI_COMM_WORLD, NULL, &a, &err) == GM_OK &&
+            gm_yee_mpi_create(&sc->grid, mat, &sc->opt, MPI_COMM_WORLD, NULL, &b, &err) == GM_OK,
+        "restart: create: %s", err.message);
+  if (a == NULL || b == NULL) return;
+  add_all(sc, NULL, a);
+  add_all(sc, NULL, b);
+  const size_t cut = sc->steps / 2;
+  char prefix[256];
+  snprintf(prefix, sizeof prefix, "test_yee_mpi_ck_%d", g_size);
+  CHECK(gm_yee_mpi_advance(a, cut) == GM_OK, "restart: advance");
+  CHECK(gm_yee_mpi_checkpoint_write(a, prefix) == GM_OK, "checkpoint: %s", gm_yee_mpi_errmsg(a));
+  CHECK(gm_yee_mpi_advance(a, sc->steps - cut) == GM_OK, "restart: advance");
+  CHECK(gm_yee_mpi_checkpoint_read(b, prefix) == GM_OK, "read: %s", gm_yee_mpi_errmsg(b));
+  CHECK(gm_yee_mpi_step(b) == cut, "restart: step %zu, expected %zu", gm_yee_mpi_step(b), cut);
+  CHECK(gm_yee_mpi_advance(b, sc->steps - cut) == GM_OK, "restart: advance: %s",
+        gm_yee_mpi_errmsg(b));
+  gm_yee_layout G;
+  gm_yee_mpi_global_layout(a, &G);
+  double *fa = g_rank == 0 ? calloc(G.size, sizeof(double)) : NULL;
+  double *fb = g_rank == 0 ? calloc(G.size, sizeof(double)) : NULL;
+  for (int c = 0; c < GM_YEE_N_COMPONENTS; ++c) {
+    if (!gm_yee_dim_has(sc->grid.dim, (gm_yee_component)c)) continue;
+    gm_yee_mpi_gather_field(a, (gm_yee_component)c, 0, fa);
+    gm_yee_mpi_gather_field(b, (gm_yee_component)c, 0, fb);
+    if (g_rank == 0)
+      CHECK(memcmp(fa, fb, G.size * sizeof(double)) == 0, "restart: %s differs",
+            gm_yee_component_name((gm_yee_component)c));
+  }
+  for (size_t p = 0; p < 3; ++p) {
+    size_t na = 0, nb = 0;
+    const double *ra = NULL, *rb = NULL;
+    gm_yee_mpi_probe_samples(a, p, &na, NULL, &ra, NULL);
+    double *copy = g_rank == 0 ? malloc((na + 1) * sizeof(double)) : NULL;
+    if (copy) memcpy(copy, ra, na * sizeof(double));
+    gm_yee_mpi_probe_samples(b, p, &nb, NULL, &rb, NULL);
+    if (g_rank == 0)
+      CHECK(na == sc->steps && na == nb && memcmp(copy, rb, na * sizeof(double)) == 0,
+            "restart: probe %zu differs (%zu vs %zu samples)", p, na, nb);
+    free(copy);
+  }
+  /* a checkpoint of another problem is refused on every rank */
+  gm_yee_grid other = sc->grid;
+  other.n[1] += 2;
+  gm_yee_mpi *c = NULL;
+  CHECK(gm_yee_mpi_create(&other, NULL, &sc->opt, MPI_COMM_WORLD, NULL, &c, &err) == GM_OK,
+        "create other");
+  if (c) {
+    const gm_status st = gm_yee_mpi_checkpoint_read(c, prefix);
+    CHECK(st == GM_EINVAL && strstr(gm_yee_mpi_errmsg(c), "another solver"),
+          "foreign checkpoint: status %d '%s'", (int)st, gm_yee_mpi_errmsg(c));
+  }
+  gm_yee_mpi_free(c);
+  char path[300];
+  snprintf(path, sizeof path, "%s.rank%dof%d", prefix, g_rank, g_size);
+  remove(path);
+  free(fa);
+  free(fb);
+  gm_yee_mpi_free(a);
+  gm_yee_mpi_free(b);
+  gm_yee_materials_free(mat);
+}
+
 /* A bad input on the last rank only: every rank fails, with that rank's message. */
 static void bad_input(void) {
   gm_yee_grid grid = {.dim = GM_YEE_3D, .n = {8, 8, 8}, .h = {0.5, 0.5, 0.5}};
@@ -232,6 +299,7 @@ int main(int argc, char **argv) {
   const scene s3 = {"3-D", {GM_YEE_3D, {16, 10, 9}, {0.5, 0.5, 0.5}, {-1.0, 0.0, 0.25}}, cube, 1,
                     36};
   compare(&s3, NULL);
+  restart(&s3);
   const int along_y[3] = {1, g_size, 1}, along_z[3] = {1, 1, g_size};
   if (g_size <= 4) {
     compare(&s3, along_y);

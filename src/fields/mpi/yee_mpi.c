@@ -21,6 +21,7 @@
 
 #include "fields/internal.h"
 #include "geomint/fields_mpi.h"
+#include "geomint/yee_checkpoint.h"
 
 typedef struct mpi_probe {
   int owner;        /* rank holding the location */
@@ -876,5 +877,52 @@ gm_status gm_yee_mpi_get_energy(gm_yee_mpi *m, gm_yee_energy *en) {
   en->magnetic = 0.5 * tot[1];
   en->plain = en->electric + en->magnetic;
   en->leapfrog = 0.5 * (tot[0] + tot[2]);
+  return GM_OK;
+}
+
+/* ---- checkpoint/restart ------------------------------------------------------------------- */
+
+static gm_status block_path(gm_yee_mpi *m, const char *prefix, char *path, size_t cap) {
+  if (prefix == NULL || snprintf(path, cap, "%s.rank%dof%d", prefix, m->rank, m->size) >= (int)cap)
+    return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL, "checkpoint: bad or too long prefix");
+  return GM_OK;
+}
+
+gm_status gm_yee_mpi_checkpoint_write(gm_yee_mpi *m, const char *prefix) {
+  if (m == NULL) return GM_EINVAL;
+  char path[4096];
+  gm_status st = block_path(m, prefix, path, sizeof path);
+  if (st == GM_OK && (st = gm_yee_checkpoint_write(m->local, path)) != GM_OK)
+    snprintf(m->errmsg, sizeof m->errmsg, "%s", gm_yee_errmsg(m->local));
+  return agree_m(m, st);
+}
+
+gm_status gm_yee_mpi_checkpoint_read(gm_yee_mpi *m, const char *prefix) {
+  if (m == NULL) return GM_EINVAL;
+  char path[4096];
+  gm_status st = block_path(m, prefix, path, sizeof path);
+  if (st == GM_OK && (st = gm_yee_checkpoint_read(m->local, path)) != GM_OK)
+    snprintf(m->errmsg, sizeof m->errmsg, "%s", gm_yee_errmsg(m->local));
+  /* every block must be at the same step */
+  unsigned long step = (unsigned long)m->local->step, lo = 0, hi = 0;
+  MPI_Allreduce(&step, &lo, 1, MPI_UNSIGNED_LONG, MPI_MIN, m->comm);
+  MPI_Allreduce(&step, &hi, 1, MPI_UNSIGNED_LONG, MPI_MAX, m->comm);
+  if (st == GM_OK && lo != hi)
+    st = gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                 "checkpoint: the blocks of %s are at steps %lu to %lu (mixed checkpoints)",
+                 prefix, lo, hi);
+  st = agree_m(m, st);
+  if (st != GM_OK) return st;
+  /* the probes' sample counts, known on their owners, for the capacity check */
+  for (size_t i = 0; i < m->n_probes; ++i) {
+    unsigned long n = 0;
+    if (m->rank == m->probes[i].owner) {
+      size_t k = 0;
+      gm_yee_probe_samples(m->local, m->probes[i].local_id, &k, NULL, NULL, NULL);
+      n = (unsigned long)k;
+    }
+    MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG, m->probes[i].owner, m->comm);
+    m->probes[i].recorded = (size_t)n;
+  }
   return GM_OK;
 }
