@@ -7,6 +7,7 @@
 
 #ifdef GM_HAVE_MPI
 #include <cJSON.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +22,12 @@ int mx_mpi_launched(void) {
   return getenv("OMPI_COMM_WORLD_SIZE") != NULL || getenv("PMI_SIZE") != NULL ||
          getenv("PMIX_RANK") != NULL;
 }
+
+/* SIGINT/SIGTERM (a wall-time limit, Ctrl-C): the run stops at the next poll, every rank at the
+ * same step, and writes a checkpoint. */
+static volatile sig_atomic_t stop_requested;
+static void on_stop(int sig) { stop_requested = sig; }
+#define POLL_STEPS 16
 
 static int parse_dims(const char *text, int dims[3]) {
   dims[0] = dims[1] = dims[2] = 0;
@@ -109,17 +116,21 @@ static int write_energy(const char *path, size_t n, const double *t, const doubl
 
 static int run(int argc, char **argv, int rank, int size) {
   const char *out_dir = "maxwell-output", *dims_text = NULL, *plot = NULL;
+  const char *ck_prefix = NULL, *restart_prefix = NULL;
   int json = 0, check = 0;
-  size_t threads = 0;
+  size_t threads = 0, ck_every = 0;
   cli_option options[] = {{"--out", CLI_ARG_STRING, &out_dir, 0},
                           {"--json", CLI_ARG_FLAG, &json, 0},
                           {"--check", CLI_ARG_FLAG, &check, 0},
                           {"--threads", CLI_ARG_COUNT, &threads, 0},
                           {"--dims", CLI_ARG_STRING, &dims_text, 0},
-                          {"--plot", CLI_ARG_STRING, &plot, 0}};
+                          {"--plot", CLI_ARG_STRING, &plot, 0},
+                          {"--checkpoint", CLI_ARG_STRING, &ck_prefix, 0},
+                          {"--checkpoint-every", CLI_ARG_COUNT, &ck_every, 0},
+                          {"--restart", CLI_ARG_STRING, &restart_prefix, 0}};
   const char *positional[1];
   size_t n_pos = 0;
-  int status = cli_parse(COMMAND, argc, argv, options, 6, positional, 1, &n_pos);
+  int status = cli_parse(COMMAND, argc, argv, options, 9, positional, 1, &n_pos);
   if (status == CLI_HELP) {
     if (rank == 0) fputs(mx_usage(), stdout);
     return CLI_EXIT_OK;
@@ -139,6 +150,10 @@ static int run(int argc, char **argv, int rank, int size) {
   }
   if (plot != NULL) {
     if (rank == 0) cli_error(COMMAND, "--plot is not available over MPI yet: run on one process");
+    return CLI_EXIT_USAGE;
+  }
+  if (ck_every > 0 && ck_prefix == NULL) {
+    if (rank == 0) cli_error(COMMAND, "--checkpoint-every needs --checkpoint PREFIX");
     return CLI_EXIT_USAGE;
   }
   const char *path = positional[0];
@@ -182,6 +197,23 @@ static int run(int argc, char **argv, int rank, int size) {
   }
   if (rank == 0) status = mx_make_dir(COMMAND, out_dir);
   MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  char ck_default[4096];
+  if (ck_prefix == NULL) ck_prefix = mx_path(ck_default, sizeof ck_default, out_dir, "checkpoint");
+  if (status == CLI_EXIT_OK && restart_prefix != NULL &&
+      gm_yee_mpi_checkpoint_read(m, restart_prefix) != GM_OK) {
+    if (rank == 0) cli_error(COMMAND, "--restart %s: %s", restart_prefix, gm_yee_mpi_errmsg(m));
+    status = CLI_EXIT_USAGE;
+  }
+  const size_t start = gm_yee_mpi_step(m);
+  if (status == CLI_EXIT_OK && start > steps) {
+    if (rank == 0)
+      cli_error(COMMAND, "--restart %s: the checkpoint is at step %zu, past the run's %zu",
+                restart_prefix, start, steps);
+    status = CLI_EXIT_USAGE;
+  }
+  stop_requested = 0;
+  void (*old_int)(int) = signal(SIGINT, on_stop);
+  void (*old_term)(int) = signal(SIGTERM, on_stop);
   /* the energy series: advance to each sampling step, then the collective sum */
   const size_t every = scene.energy_every;
   const size_t n_energy = every > 0 ? steps / every + 1 + (steps % every != 0) : 0;
@@ -192,7 +224,7 @@ static int run(int argc, char **argv, int rank, int size) {
   if (status == CLI_EXIT_OK) {
     MPI_Barrier(MPI_COMM_WORLD);
     const double t0 = MPI_Wtime();
-    for (size_t done = 0; status == CLI_EXIT_OK;) {
+    for (size_t done = start; status == CLI_EXIT_OK;) {
       if (every > 0 && (done % every == 0 || done == steps)) {
         gm_yee_energy e;
         gm_yee_mpi_get_energy(m, &e);
@@ -206,14 +238,33 @@ static int run(int argc, char **argv, int rank, int size) {
       if (done == steps) break;
       size_t k = steps - done;
       if (every > 0 && k > every - done % every) k = every - done % every;
+      if (ck_every > 0 && k > ck_every - done % ck_every) k = ck_every - done % ck_every;
+      if (k > POLL_STEPS) k = POLL_STEPS;
       if (gm_yee_mpi_advance(m, k) != GM_OK) {
         if (rank == 0) cli_error(COMMAND, "step %zu: %s", gm_yee_mpi_step(m), gm_yee_mpi_errmsg(m));
         status = CLI_EXIT_FAILURE;
       }
       done += k;
+      /* a signal on any rank stops all of them here, at the same step */
+      int sig = (int)stop_requested, any = 0;
+      MPI_Allreduce(&sig, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+      const int due = ck_every > 0 && done % ck_every == 0 && done < steps;
+      if (status == CLI_EXIT_OK && (any || due)) {
+        if (gm_yee_mpi_checkpoint_write(m, ck_prefix) != GM_OK) {
+          if (rank == 0) cli_error(COMMAND, "%s", gm_yee_mpi_errmsg(m));
+          status = CLI_EXIT_FAILURE;
+        } else if (any) {
+          if (rank == 0)
+            cli_error(COMMAND, "interrupted at step %zu of %zu: checkpoint %s written (continue "
+                      "with --restart %s)", done, steps, ck_prefix, ck_prefix);
+          status = CLI_EXIT_INTERRUPTED;
+        }
+      }
     }
     wall = MPI_Wtime() - t0;
   }
+  signal(SIGINT, old_int);
+  signal(SIGTERM, old_term);
   char file[4096];
   const size_t np = scene.n_probes;
   double **signals = calloc(np + 1, sizeof *signals);

@@ -22,4 +22,35 @@ set -e
 [ "$rc" -eq 2 ] || { echo "flux scene: exit status $rc, expected 2"; cat "$work/flux.err"; exit 1; }
 n=$(grep -c "flux planes are not distributed" "$work/flux.err")
 [ "$n" -eq 1 ] || { echo "flux scene: $n messages, expected 1"; cat "$work/flux.err"; exit 1; }
-echo "cli_maxwell_run: $np ranks: probes.csv identical, flux scene refused once"
+# checkpoints every 50 steps; a run restarted from the last one (step 150 of 167) ends with the
+# same probes.csv, byte for byte
+OMP_NUM_THREADS=1 "$mpiexec" --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS -np "$np" \
+  "$geomint" maxwell run "$scene" --out "$work/ck" --checkpoint "$work/ck/state" \
+  --checkpoint-every 50 > /dev/null
+OMP_NUM_THREADS=1 "$mpiexec" --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS -np "$np" \
+  "$geomint" maxwell run "$scene" --out "$work/restarted" --restart "$work/ck/state" > /dev/null
+cmp "$work/serial/probes.csv" "$work/restarted/probes.csv"
+# SIGTERM to mpirun (as a batch system at its wall-time limit): every rank stops at one step,
+# writes its checkpoint block, and the run fails with one message
+sed 's/"time": 12.0/"time": 5000.0/' "$scene" > "$work/long.json"
+OMP_NUM_THREADS=1 "$mpiexec" --oversubscribe --allow-run-as-root -x OMP_NUM_THREADS -np "$np" \
+  "$geomint" maxwell run "$work/long.json" --out "$work/long" > /dev/null 2> "$work/long.err" &
+pid=$!
+i=0
+while [ ! -d "$work/long" ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
+sleep 1
+kill -TERM "$pid"
+set +e
+wait "$pid"
+rc=$?
+set -e
+[ "$rc" -ne 0 ] || { echo "SIGTERM: exit status 0"; exit 1; }
+n=$(grep -c "interrupted at step" "$work/long.err")
+[ "$n" -eq 1 ] || { echo "SIGTERM: $n messages"; cat "$work/long.err"; exit 1; }
+r=0
+while [ $r -lt "$np" ]; do
+  [ -s "$work/long/checkpoint.rank${r}of$np" ] || { echo "SIGTERM: no checkpoint of rank $r"; exit 1; }
+  r=$((r + 1))
+done
+echo "cli_maxwell_run: $np ranks: probes.csv identical (also after a restart), flux scene" \
+  "refused once, SIGTERM wrote a checkpoint"
