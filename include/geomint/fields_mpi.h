@@ -1,6 +1,6 @@
-/* geomint fields over MPI: the Yee solver on a Cartesian grid of processes (built only when
- * geomint is configured with GM_MPI; the macro GM_HAVE_MPI is then defined in geomint/config
- * users' builds by the CMake target).
+/* geomint fields over MPI: the Yee solver on a Cartesian grid of processes. Built only when
+ * geomint is configured with GM_MPI (then the CMake targets define GM_HAVE_MPI for their users
+ * and link MPI::MPI_C); without it this header is installed but its functions do not exist.
  *
  * Domain decomposition (DESIGN §5a): the grid's cells are split in blocks along each axis over a
  * Cartesian process grid (MPI_Dims_create / MPI_Cart_create, or dims given). Each rank holds an
