@@ -281,6 +281,19 @@ static void bad_input(void) {
     CHECK(st == GM_EINVAL && strstr(err.message, "CPML on face -x"), "thick CPML: '%s'",
           err.message);
   gm_yee_mpi_free(bad);
+  /* a process grid that does not fit the ranks */
+  const int too_many[3] = {g_size + 1, 1, 1};
+  bad = NULL;
+  st = gm_yee_mpi_create(&grid, NULL, NULL, MPI_COMM_WORLD, too_many, &bad, &err);
+  CHECK(st == GM_EINVAL && bad == NULL && strstr(err.message, "do not fit"), "bad dims: '%s'",
+        err.message);
+  const int free_y[3] = {1, 0, 1};
+  st = gm_yee_mpi_create(&grid, NULL, NULL, MPI_COMM_WORLD, free_y, &bad, &err);
+  int got[3] = {0, 0, 0};
+  if (st == GM_OK) gm_yee_mpi_block(bad, got, NULL, NULL, NULL, NULL);
+  CHECK(st == GM_OK && got[0] == 1 && got[1] == g_size && got[2] == 1, "dims 1x0x1: %d x %d x %d",
+        got[0], got[1], got[2]);
+  gm_yee_mpi_free(bad);
   gm_yee_mpi_free(dist);
 }
 

@@ -218,18 +218,18 @@ static gm_status decompose(gm_yee_mpi *m, MPI_Comm comm, const int *dims_in) {
     }
     periods[a] = m->periodic[a];
   }
-  int prod = 1;
-  for (int a = 0; a < m->n_axes; ++a) prod *= dims[a] > 0 ? dims[a] : 1;
-  if (bad_dims(dims_in) || prod != m->size) {
-    int any_free = 0;
-    for (int a = 0; a < m->n_axes; ++a) any_free |= dims[a] == 0;
-    if (!any_free || m->size % prod != 0)
-      return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
-                     "yee mpi: dims %d x %d x %d do not multiply to the %d ranks", dims[0],
-                     dims[1], dims[2], m->size);
-    if (MPI_Dims_create(m->size, m->n_axes, dims) != MPI_SUCCESS)
-      return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL, "yee mpi: MPI_Dims_create failed");
+  int prod = 1, any_free = 0;
+  for (int a = 0; a < m->n_axes; ++a) {
+    prod *= dims[a] > 0 ? dims[a] : 1;
+    any_free |= dims[a] == 0;
   }
+  if (any_free ? m->size % prod != 0 : prod != m->size)
+    return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
+                   "yee mpi: dims %d x %d x %d do not fit the %d ranks", dims[0], dims[1],
+                   dims[2], m->size);
+  /* the axes left at 0 get MPI's balanced factors */
+  if (any_free && MPI_Dims_create(m->size, m->n_axes, dims) != MPI_SUCCESS)
+    return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL, "yee mpi: MPI_Dims_create failed");
   for (int a = 0; a < m->n_axes; ++a)
     if ((size_t)dims[a] > m->grid.n[a])
       return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL,
