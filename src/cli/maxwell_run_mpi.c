@@ -211,9 +211,7 @@ static int run(int argc, char **argv, int rank, int size) {
                 restart_prefix, start, steps);
     status = CLI_EXIT_USAGE;
   }
-  stop_requested = 0;
-  void (*old_int)(int) = signal(SIGINT, on_stop);
-  void (*old_term)(int) = signal(SIGTERM, on_stop);
+
   /* the energy series: advance to each sampling step, then the collective sum */
   const size_t every = scene.energy_every;
   const size_t n_energy = every > 0 ? steps / every + 1 + (steps % every != 0) : 0;
@@ -263,8 +261,7 @@ static int run(int argc, char **argv, int rank, int size) {
     }
     wall = MPI_Wtime() - t0;
   }
-  signal(SIGINT, old_int);
-  signal(SIGTERM, old_term);
+
   char file[4096];
   const size_t np = scene.n_probes;
   double **signals = calloc(np + 1, sizeof *signals);
@@ -370,7 +367,14 @@ int mx_run_mpi_main(int argc, char **argv) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
+  /* from here on a SIGINT/SIGTERM only sets the flag the run polls (a signal during the setup
+   * stops the run at its first poll, with a checkpoint) */
+  stop_requested = 0;
+  void (*old_int)(int) = signal(SIGINT, on_stop);
+  void (*old_term)(int) = signal(SIGTERM, on_stop);
   int status = run(argc, argv, rank, size);
+  signal(SIGINT, old_int);
+  signal(SIGTERM, old_term);
   /* the same exit status on every rank (the worst one) */
   int worst = status;
   MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
