@@ -51,22 +51,29 @@ static int write_probes(const char *path, const gm_yee_scene *sc, gm_yee_mpi *m,
   const size_t np = sc->n_probes;
   size_t n = (size_t)-1;
   double *t0 = NULL;
+  int failed = 0;
   for (size_t k = 0; k < np; ++k) {
     size_t nk = 0;
     const double *t = NULL, *re = NULL;
-    if (gm_yee_mpi_probe_samples(m, k, &nk, &t, &re, NULL) != GM_OK) return CLI_EXIT_FAILURE;
-    if (gm_yee_mpi_rank(m) != 0) continue;
+    /* collective: every rank makes every call, whatever failed before on rank 0 */
+    if (gm_yee_mpi_probe_samples(m, k, &nk, &t, &re, NULL) != GM_OK) failed = 1;
+    if (gm_yee_mpi_rank(m) != 0 || failed) continue;
     signals[k] = malloc((nk + 1) * sizeof(double));
     if (k == 0) t0 = malloc((nk + 1) * sizeof(double));
-    if (signals[k] == NULL || (k == 0 && t0 == NULL)) {
-      free(t0);
-      return CLI_EXIT_FAILURE;
+    if (signals[k] == NULL || t0 == NULL) {
+      failed = 1;
+      continue;
     }
     memcpy(signals[k], re, nk * sizeof(double));
     if (k == 0) memcpy(t0, t, nk * sizeof(double));
     if (nk < n) n = nk;
   }
   if (gm_yee_mpi_rank(m) != 0) return CLI_EXIT_OK;
+  if (failed) {
+    free(t0);
+    cli_error(COMMAND, "gathering the probes failed (out of memory on rank 0)");
+    return CLI_EXIT_FAILURE;
+  }
   *n_out = n;
   const char **names = malloc((np + 1) * sizeof *names);
   double *row = malloc((np + 1) * sizeof *row);
@@ -159,8 +166,15 @@ static int run(int argc, char **argv, int rank, int size) {
   const char *path = positional[0];
   gm_yee_scene scene;
   gm_error err = {{0}};
-  if (gm_yee_scene_load(path, &scene, &err) != GM_OK) {
-    if (rank == 0) cli_error(COMMAND, "%s", err.message);
+  /* a file one rank cannot read (another node's view of the path) stops every rank */
+  const int loaded = gm_yee_scene_load(path, &scene, &err) == GM_OK;
+  const int mine = loaded ? size : rank;
+  int failing = size;
+  MPI_Allreduce(&mine, &failing, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (failing < size) {
+    if (rank == failing && size > 1) cli_error(COMMAND, "rank %d: %s", rank, err.message);
+    if (rank == failing && size == 1) cli_error(COMMAND, "%s", err.message);
+    if (loaded) gm_yee_scene_clear(&scene);
     return CLI_EXIT_USAGE;
   }
   if (threads > 0) scene.options.n_threads = (int)threads;
