@@ -12,6 +12,10 @@ int mx_e4_main(int argc, char **argv);     /* maxwell_e4.c */
 static const char usage[] =
     "usage: geomint maxwell run SCENE.json [--out DIR] [--json] [--check] [--threads K]\n"
     "                           [--plot FILE.png [--plot-field C]]\n"
+    "       mpirun -np N geomint maxwell run SCENE.json [--out DIR] [--json] [--check]\n"
+    "                           [--dims AxBxC] [--checkpoint PREFIX [--checkpoint-every N]]\n"
+    "                           [--restart PREFIX]   (built with MPI: the distributed solver;\n"
+    "                           SIGINT/SIGTERM write a checkpoint and stop)\n"
     "       geomint maxwell cavity [--dim 2|3] [--n N] [--periods P] [--out DIR] [--json]\n"
     "                              [--threads K]\n"
     "       geomint maxwell e4 [--n N] [--time T] [--seed S] [--out DIR] [--json] [--threads K]\n"

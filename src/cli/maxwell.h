@@ -18,6 +18,12 @@ int mx_make_dir(const char *command, const char *dir);
 /* dir/name into buf. */
 const char *mx_path(char *buf, size_t cap, const char *dir, const char *name);
 
+/* ---- MPI (maxwell_run_mpi.c, built with GM_MPI) ----------------------------------------- */
+/* Non-zero when this process was started by mpirun (its environment says so). */
+int mx_mpi_launched(void);
+/* `maxwell run` on the distributed solver: MPI_Init .. MPI_Finalize around the run. */
+int mx_run_mpi_main(int argc, char **argv);
+
 /* ---- harminv summaries ---------------------------------------------------------------- */
 /* Modes of a signal in [f_min, f_max] (harminv), kept when harminv's error estimate is below
  * 1e-4, |Q| > 1 and the amplitude above 1e-6 of the largest; ascending frequency; returns how

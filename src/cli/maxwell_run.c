@@ -325,6 +325,9 @@ static int plot_final(const char *png, const char *field, const char *scene_path
 }
 
 int mx_run_main(int argc, char **argv) {
+#ifdef GM_HAVE_MPI
+  if (mx_mpi_launched()) return mx_run_mpi_main(argc, argv);
+#endif
   const char *out_dir = "maxwell-output";
   const char *plot = NULL, *plot_field = NULL;
   int json = 0, check = 0;

@@ -156,8 +156,19 @@ struct gm_yee {
   size_t n_tfsf;
   yee_tfsf *tfsf;
   size_t step;
+  /* MPI subdomains (src/fields/mpi/yee_mpi.c): called after each E half step to copy the
+   * ghost planes' tangential E from the neighbouring ranks; NULL for a whole-domain solver */
+  void (*exchange_e)(void *ctx, gm_yee *s);
+  void *exchange_ctx;
   char errmsg[YEE_ERRMSG];
 };
+
+/* gm_yee_create, with per-location Hodge-star coefficients even when the materials are uniform
+ * (cell_coefficients != 0; materials must then be non-NULL): an MPI subdomain whose cells
+ * happen to be uniform must round as the whole non-uniform domain does. */
+gm_status yee_create_with(const gm_yee_grid *grid, const gm_yee_materials *materials,
+                          const gm_yee_options *options, int cell_coefficients, gm_yee **out,
+                          gm_error *err);
 
 /* Helpers shared by the solver files. */
 static inline int yee_is_e(int c) { return c < 3; }

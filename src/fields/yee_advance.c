@@ -69,6 +69,7 @@ gm_status gm_yee_advance(gm_yee *s, size_t n_steps) {
       yee_sources_apply(s, 1);
       yee_aniso_apply(s); /* off-diagonal ε̃⁻¹ of smoothed interfaces (yee_aniso.c) */
       yee_apply_ghosts_e(s);
+      if (s->exchange_e) s->exchange_e(s->exchange_ctx, s);
       /* Faraday: H^n → H^{n+1} with E^{n+½} */
       yee_update_h(s);
     }

@@ -182,6 +182,12 @@ static double *alloc_array(gm_yee *s) { return calloc(s->L.size, sizeof(double))
 
 gm_status gm_yee_create(const gm_yee_grid *grid, const gm_yee_materials *materials,
                         const gm_yee_options *options, gm_yee **out, gm_error *err) {
+  return yee_create_with(grid, materials, options, 0, out, err);
+}
+
+gm_status yee_create_with(const gm_yee_grid *grid, const gm_yee_materials *materials,
+                          const gm_yee_options *options, int cell_coefficients, gm_yee **out,
+                          gm_error *err) {
   if (out == NULL) return gm_error_set(err, GM_EINVAL, "yee: NULL output");
   *out = NULL;
   gm_status st = yee_grid_check(grid, err);
@@ -311,7 +317,7 @@ gm_status gm_yee_create(const gm_yee_grid *grid, const gm_yee_materials *materia
   update_ranges(s);
 
   /* Hodge-star coefficients */
-  s->uniform = 1;
+  s->uniform = !(cell_coefficients && materials != NULL);
   s->lossy = 0;
   s->eps0 = s->mu0 = 1.0;
   double sigma0 = 0.0;
