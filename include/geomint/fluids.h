@@ -98,6 +98,11 @@ typedef struct gm_fluid_options {
                                boundary speeds and the initial velocity (default 0) */
   double midpoint_tol;      /* fixed-point tolerance of GM_FLUID_MIDPOINT, relative (1e-15) */
   size_t midpoint_max_iter; /* default 200 */
+  /* GM_FLUID_MIDPOINT: the Jacobian sees ζ = 0 on the walls (flat stress-free walls, where
+   * ∂u_t/∂n = 0 gives ζ = 0) instead of the wall vortex sheet Γ_v/|⋆v| = O(1/h) of the boundary
+   * dual cells. Energy and total vorticity stay exact; the conserved enstrophy is then the
+   * interior one (gm_fluid_diagnostics.interior_enstrophy). Default 0. docs/fluids.md. */
+  int stress_free_walls;
 } gm_fluid_options;
 
 gm_fluid_options gm_fluid_defaults(void);
@@ -153,6 +158,7 @@ typedef struct gm_fluid_diagnostics {
   double time;
   double kinetic_energy;      /* ½ Σ_T |T| |u_T|² = ½ ψᵀ d0ᵀ⋆1 d0 ψ */
   double enstrophy;           /* ½ Σ_v Γ_v² / |⋆v| */
+  double interior_enstrophy;  /* the same over the vertices where ψ is free */
   double total_vorticity;     /* Σ_v Γ_v */
   double div_max;             /* ‖δω‖∞: max over triangles of the net flux out, |d1 dψ| */
   double scalar_mass;         /* Σ_v |⋆v| θ_v */

@@ -68,7 +68,8 @@ static gm_status get_pair(parser *p, const cJSON *obj, const char *key, const ch
 
 static const char *known_keys[] = {
     "mesh",    "boundaries", "nu",           "kappa",          "rho",     "dt", "t_end", "scheme",
-    "initial", "amplitude",  "output_every", "velocity_scale", "comment", NULL};
+    "initial", "amplitude",  "output_every", "velocity_scale", "comment", "stress_free_walls",
+    NULL};
 
 static gm_status parse_mesh(parser *p, const cJSON *m, const char *base_dir, gm_fluid_case *c,
                             gm_error *err) {
@@ -255,6 +256,14 @@ static gm_status case_parse(const char *text, const char *base_dir, const char *
       st = bad(&p, "$.scheme", "expected \"seed\" or \"midpoint\"");
       goto done;
     }
+  }
+  const cJSON *sf = cJSON_GetObjectItemCaseSensitive(root, "stress_free_walls");
+  if (sf) {
+    if (!cJSON_IsBool(sf)) {
+      st = bad(&p, "$.stress_free_walls", "expected true or false");
+      goto done;
+    }
+    c->options.stress_free_walls = cJSON_IsTrue(sf) ? 1 : 0;
   }
   const cJSON *in = cJSON_GetObjectItemCaseSensitive(root, "initial");
   if (in) {

@@ -177,6 +177,9 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
   if (opt.scheme == GM_FLUID_MIDPOINT && opt.nu != 0.0)
     return gm_error_set(err, GM_EINVAL,
                         "fluid: the midpoint scheme is inviscid: nu must be 0 (got %g)", opt.nu);
+  if (opt.stress_free_walls && opt.scheme != GM_FLUID_MIDPOINT)
+    return gm_error_set(err, GM_EINVAL,
+                        "fluid: stress_free_walls applies to the midpoint scheme only");
   if (!(opt.midpoint_tol > 0.0) || opt.midpoint_max_iter == 0)
     return gm_error_set(err, GM_EINVAL,
                         "fluid: midpoint_tol must be > 0 and midpoint_max_iter >= 1");

@@ -128,6 +128,12 @@ static gm_status midpoint_step(gm_fluid *f) {
     gm_status st = solve_psi(f, f->poisson, f->gamma_h, NULL, f->psi_h);
     if (st) return st;
     vorticity_of(f, f->gamma_h, f->zeta_h);
+    /* Stress-free walls: ζ̃ = 0 where ψ is fixed. Still Σ ψ_v Γ̇_v = t(ψ, ψ, ζ̃) = 0 and
+     * Σ Γ̇_v = 0 (ψ constant on the wall), and Σ ζ̃_v Γ̇_v = t(ζ̃, ψ, ζ̃) = 0 with Σ ζ̃_v Γ_v = twice
+     * the interior enstrophy: the quadratic invariants kept by the midpoint rule. */
+    if (f->opt.stress_free_walls)
+      for (size_t v = 0; v < f->nv; ++v)
+        if (f->psi_fixed[v]) f->zeta_h[v] = 0.0;
     gm_fluid_jacobian(f, f->psi_h, f->zeta_h, f->out);
     double change = 0.0;
     for (size_t v = 0; v < f->nv; ++v) {
@@ -265,6 +271,7 @@ void gm_fluid_diagnose(const gm_fluid *f, gm_fluid_diagnostics *d) {
   }
   for (size_t v = 0; v < f->nv; ++v) {
     d->enstrophy += 0.5 * f->gamma[v] * f->gamma[v] / f->star0[v];
+    if (!f->psi_fixed[v]) d->interior_enstrophy += 0.5 * f->gamma[v] * f->gamma[v] / f->star0[v];
     d->total_vorticity += f->gamma[v];
     d->scalar_mass += f->star0[v] * f->theta[v];
   }

@@ -32,6 +32,9 @@ Test(fluids, bad_input) {
   o.dt = NAN;
   expect_fail(&fx, 4, bc, &o, GM_EINVAL, "dt = nan");
   o.dt = 1e-2;
+  o.stress_free_walls = 1;
+  expect_fail(&fx, 4, bc, &o, GM_EINVAL, "stress_free_walls applies to the midpoint scheme only");
+  o.stress_free_walls = 0;
   bc[2].scalar_value = NAN;
   expect_fail(&fx, 4, bc, &o, GM_EDOMAIN, "(\"top\"): non-finite");
   bc[2].scalar_value = 1.0;
