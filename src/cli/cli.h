@@ -193,6 +193,10 @@ typedef struct cli_plot_series {
 
 /* Is a gnuplot program on PATH? */
 int cli_gnuplot_available(void);
+/* An output folder for data and gnuplot scripts: refuses a name with a quote (the scripts
+ * quote it) and, unless no_plot, a machine without gnuplot; creates dir (its parent must
+ * exist). Prints the error; returns an exit status. */
+int cli_prepare_plot_dir(const char *cmd, const char *dir, int no_plot);
 /* Can png_path be written (its directory exists and is writable)? Prints why not. */
 int cli_plot_check_output(const char *command, const char *png_path);
 /* Draw the relative energy errors of the series against time (log y) into png_path.

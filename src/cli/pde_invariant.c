@@ -24,22 +24,6 @@ const char cli_pde_invariant_usage[] =
     "       standard against invariant FTCS. Writes DIR/b13.csv and DIR/b13.png.\n"
     "     orders: measured order of consistency of each scheme, both forms.\n";
 
-static int prepare_dir(const char *cmd, const char *dir, int no_plot) {
-  if (strchr(dir, '\'') != NULL) {
-    cli_error(cmd, "--out: the directory name may not contain a quote");
-    return CLI_EXIT_USAGE;
-  }
-  if (!no_plot && !cli_gnuplot_available()) {
-    cli_error(cmd, "gnuplot is not installed (or not on PATH): use --no-plot");
-    return CLI_EXIT_FAILURE;
-  }
-  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-    cli_error(cmd, "cannot create the directory '%s': %s", dir, strerror(errno));
-    return CLI_EXIT_FAILURE;
-  }
-  return CLI_EXIT_OK;
-}
-
 static FILE *open_out(const char *cmd, const char *dir, const char *name, char *path, size_t cap) {
   snprintf(path, cap, "%s/%s", dir, name);
   FILE *f = fopen(path, "w");
@@ -85,7 +69,7 @@ static const char *status_text(const gm_inv_b12_row *r) {
 
 static int invariant_galilean(const char *dir, int json, int no_plot) {
   const char *cmd = "pde invariant galilean";
-  int rc = prepare_dir(cmd, dir, no_plot);
+  int rc = cli_prepare_plot_dir(cmd, dir, no_plot);
   if (rc != CLI_EXIT_OK) return rc;
   gm_inv_b12 *b = malloc(sizeof *b);
   if (b == NULL) {
@@ -171,7 +155,7 @@ static void b13_body(FILE *g, const void *ctx) {
 
 static int invariant_shock(const char *dir, int json, int no_plot) {
   const char *cmd = "pde invariant shock";
-  int rc = prepare_dir(cmd, dir, no_plot);
+  int rc = cli_prepare_plot_dir(cmd, dir, no_plot);
   if (rc != CLI_EXIT_OK) return rc;
   gm_inv_b13 b;
   gm_error err = {{0}};

@@ -43,22 +43,6 @@ static void print_help(void) {
   fputs(cli_pde_spectral_usage + strlen("      "), stdout);
 }
 
-static int prepare_dir(const char *cmd, const char *dir, int no_plot) {
-  if (strchr(dir, '\'') != NULL) {
-    cli_error(cmd, "--out: the directory name may not contain a quote");
-    return CLI_EXIT_USAGE;
-  }
-  if (!no_plot && !cli_gnuplot_available()) {
-    cli_error(cmd, "gnuplot is not installed (or not on PATH): use --no-plot");
-    return CLI_EXIT_FAILURE;
-  }
-  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-    cli_error(cmd, "cannot create the directory '%s': %s", dir, strerror(errno));
-    return CLI_EXIT_FAILURE;
-  }
-  return CLI_EXIT_OK;
-}
-
 static FILE *open_out(const char *cmd, const char *dir, const char *name) {
   char path[4200];
   snprintf(path, sizeof path, "%s/%s", dir, name);
@@ -128,7 +112,7 @@ static int eigenvalue(const char *cmd, int pt, int k, size_t n, double box,
 
 static int sch_eigen(const char *dir, int no_plot) {
   const char *cmd = "pde schrodinger eigen";
-  int rc = prepare_dir(cmd, dir, no_plot);
+  int rc = cli_prepare_plot_dir(cmd, dir, no_plot);
   if (rc != CLI_EXIT_OK) return rc;
   FILE *f = open_out(cmd, dir, "schrodinger-eigen-n.dat");
   if (f == NULL) return CLI_EXIT_FAILURE;
@@ -261,7 +245,7 @@ static int sch_compare(size_t n, double dt, double T, const char *dir, int no_pl
     cli_error(cmd, "--n %zu must be even, >= 4 and <= 2^24", n);
     return CLI_EXIT_USAGE;
   }
-  int rc = prepare_dir(cmd, dir, no_plot);
+  int rc = cli_prepare_plot_dir(cmd, dir, no_plot);
   if (rc != CLI_EXIT_OK) return rc;
   /* the VI's FFTs a step, measured on its first 20 steps, set the split-step's equal-cost step */
   gm_schrodinger *vi = coherent_solver(cmd, GM_SCHRODINGER_VI, n, dt);
@@ -420,7 +404,7 @@ int cli_pde_spectral_star(int argc, char **argv) {
               courant);
     return CLI_EXIT_USAGE;
   }
-  if ((rc = prepare_dir(cmd, dir, no_plot)) != CLI_EXIT_OK) return rc;
+  if ((rc = cli_prepare_plot_dir(cmd, dir, no_plot)) != CLI_EXIT_OK) return rc;
   FILE *f = open_out(cmd, dir, "spectral-star.dat");
   if (f == NULL) return CLI_EXIT_FAILURE;
   double L = 2.0 * PI_, h = L / (double)n, dt = courant * h;

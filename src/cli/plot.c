@@ -1,5 +1,6 @@
 /* Plots drawn by gnuplot through a pipe: the relative energy error against time (run, demo),
  * and log-log lines of y against x (wp: error against force evaluations). */
+#include <errno.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -248,4 +249,20 @@ int cli_plot_custom(const char *command, const char *png_path, const char *title
                     cli_plot_body body, const void *ctx) {
   custom_plot c = {title, body, ctx};
   return run_gnuplot(command, png_path, write_custom_script, &c);
+}
+
+int cli_prepare_plot_dir(const char *cmd, const char *dir, int no_plot) {
+  if (strchr(dir, '\'') != NULL) {
+    cli_error(cmd, "--out: the directory name may not contain a quote");
+    return CLI_EXIT_USAGE;
+  }
+  if (!no_plot && !cli_gnuplot_available()) {
+    cli_error(cmd, "gnuplot is not installed (or not on PATH): use --no-plot");
+    return CLI_EXIT_FAILURE;
+  }
+  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+    cli_error(cmd, "cannot create the directory '%s': %s", dir, strerror(errno));
+    return CLI_EXIT_FAILURE;
+  }
+  return CLI_EXIT_OK;
 }

@@ -33,6 +33,24 @@ static gm_status setup(double lx, double ly, size_t nx, gm_mesh **m, gm_fluid_gr
   return st;
 }
 
+/* The channel's four groups, as both experiments use them: walls below and above (scalar
+ * Dirichlet, θ = theta_top on the top wall, 0 below), inflow on the left, outflow on the right.
+ * The callers set the wall and inflow velocities and the inflow's scalar condition. */
+static void channel_bcs(gm_fluid_bc bc[4], double theta_top) {
+  memset(bc, 0, 4 * sizeof *bc);
+  bc[0].group = "bottom";
+  bc[0].kind = GM_FLUID_WALL;
+  bc[0].scalar = GM_SCALAR_DIRICHLET;
+  bc[1].group = "right";
+  bc[1].kind = GM_FLUID_OUTFLOW;
+  bc[2].group = "top";
+  bc[2].kind = GM_FLUID_WALL;
+  bc[2].scalar = GM_SCALAR_DIRICHLET;
+  bc[2].scalar_value = theta_top;
+  bc[3].group = "left";
+  bc[3].kind = GM_FLUID_INFLOW;
+}
+
 gm_status gm_fluid_channel(size_t nx, double t_end, gm_fluid_channel_result *r, gm_error *err) {
   if (!r || nx < 8 || nx > 4000 || !(t_end >= 0) || t_end > 1e4)
     return gm_error_set(err, GM_EINVAL, "channel: nx = %zu must be in [8, 4000], t_end in [0, 1e4]",
@@ -44,18 +62,7 @@ gm_status gm_fluid_channel(size_t nx, double t_end, gm_fluid_channel_result *r, 
   gm_status st = setup(L, 1.0, nx, &m, &g, err);
   if (st) return st;
   gm_fluid_bc bc[4];
-  memset(bc, 0, sizeof bc);
-  bc[0].group = "bottom";
-  bc[0].kind = GM_FLUID_WALL;
-  bc[0].scalar = GM_SCALAR_DIRICHLET;
-  bc[1].group = "right";
-  bc[1].kind = GM_FLUID_OUTFLOW;
-  bc[2].group = "top";
-  bc[2].kind = GM_FLUID_WALL;
-  bc[2].scalar = GM_SCALAR_DIRICHLET;
-  bc[2].scalar_value = 20.0;
-  bc[3].group = "left";
-  bc[3].kind = GM_FLUID_INFLOW;
+  channel_bcs(bc, 20.0);
   bc[3].speed = 1.0;
   bc[3].scalar = GM_SCALAR_DIRICHLET;
   gm_fluid_options o = gm_fluid_defaults();
@@ -149,19 +156,8 @@ gm_status gm_fluid_shear(int poiseuille, size_t n, double dt, double t_end,
   gm_status st = setup(1.0, 1.0, n, &m, &g, err);
   if (st) return st;
   gm_fluid_bc bc[4];
-  memset(bc, 0, sizeof bc);
-  bc[0].group = "bottom";
-  bc[0].kind = GM_FLUID_WALL;
-  bc[0].scalar = GM_SCALAR_DIRICHLET;
-  bc[1].group = "right";
-  bc[1].kind = GM_FLUID_OUTFLOW;
-  bc[2].group = "top";
-  bc[2].kind = GM_FLUID_WALL;
+  channel_bcs(bc, 1.0);
   bc[2].velocity[0] = poiseuille ? 0.0 : 1.0;
-  bc[2].scalar = GM_SCALAR_DIRICHLET;
-  bc[2].scalar_value = 1.0;
-  bc[3].group = "left";
-  bc[3].kind = GM_FLUID_INFLOW;
   bc[3].profile = poiseuille ? poiseuille_profile : couette_profile;
   gm_fluid_options o = gm_fluid_defaults();
   o.dt = dt;
