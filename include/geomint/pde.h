@@ -16,6 +16,7 @@
 
 #include "geomint/core.h"
 #include "geomint/pde_invariant.h" /* invariant (moving-frame) schemes for Burgers, heat */
+#include "geomint/pde_moving_mesh.h" /* space–time adaptive variational integrator (wave) */
 #include "geomint/pde_spectral.h"  /* Schrödinger, spectral Hodge star, tent-function VI */
 
 #ifdef __cplusplus
