@@ -115,6 +115,41 @@ gm_status gm_moving_mesh_equidistribute(size_t n, double x0, double length, doub
                                         int dirichlet, gm_moving_mesh_fn u, const void *ctx,
                                         size_t samples, double *x, gm_error *err);
 
+/* ---- the travelling-pulse experiment (docs/pde.md, `geomint pde moving-mesh`) ------------- */
+/* u = exp(−(x − 10 − t)²) on [0, 20) periodic (u_t = −u_x at t = 0), or on [0, 20] with u held
+ * at both ends; ramp = 1 instead takes u = sin(πx/5 − πt/5) + 2t (u_t >= 2 − π/5 > 0 everywhere:
+ * no cell with u_t = 0). n nodes equidistributed for alpha (uniform for alpha = 0), first step
+ * Δt = cfl·min Δx. */
+typedef struct gm_moving_mesh_pulse {
+  size_t n;
+  double cfl;
+  gm_moving_mesh_kind kind;
+  double alpha;
+  int dirichlet, ramp;
+} gm_moving_mesh_pulse;
+
+/* The exact (d'Alembert) solution of the pulse set-up at (x, t). */
+double gm_moving_mesh_pulse_exact(const gm_moving_mesh_pulse *p, double x, double t);
+/* Create the solver of the set-up (errors as gm_moving_mesh_create). */
+gm_status gm_moving_mesh_pulse_create(const gm_moving_mesh_pulse *p, gm_moving_mesh **out,
+                                      gm_error *err);
+
+typedef struct gm_moving_mesh_pulse_result {
+  gm_status status;  /* of the run: GM_OK or the failed step's error (message in err) */
+  size_t steps;      /* completed */
+  double t;          /* of the newest layer */
+  double max_rel_energy, max_rel_momentum; /* max over the steps of |E − E⁰|/E⁰, |P − P⁰|/|P⁰| */
+  double max_error;  /* max |u − exact| on the newest layer */
+  double newton_per_step, min_dt, max_dt;
+} gm_moving_mesh_pulse_result;
+
+/* Run the set-up for `steps` steps (observer fn every step, may be NULL). A failed step is not
+ * an error of this function: it ends the run and is in result->status and err's message.
+ * Returns an error only for a set-up create refuses. */
+gm_status gm_moving_mesh_pulse_run(const gm_moving_mesh_pulse *p, size_t steps,
+                                   gm_moving_mesh_observer_fn fn, void *ctx,
+                                   gm_moving_mesh_pulse_result *result, gm_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -207,6 +207,8 @@ int cli_pde_nls_long(int argc, char **argv); /* pde_nls.c */
 int cli_pde_run(int argc, char **argv);      /* pde_run.c */
 int cli_pde_invariant(int argc, char **argv); /* pde_invariant.c */
 extern const char cli_pde_invariant_usage[];
+int cli_pde_moving_mesh(int argc, char **argv); /* pde_moving_mesh.c */
+extern const char cli_pde_moving_mesh_usage[];
 
 static int pde_main(int argc, char **argv) {
   if (argc >= 1 && strcmp(argv[0], "nls-long") == 0) {
@@ -221,6 +223,8 @@ static int pde_main(int argc, char **argv) {
   if (argc >= 1 && strcmp(argv[0], "b10") == 0) return pde_b10(argc - 1, argv + 1);
   if (argc >= 1 && strcmp(argv[0], "invariant") == 0)
     return cli_pde_invariant(argc - 1, argv + 1);
+  if (argc >= 1 && strcmp(argv[0], "moving-mesh") == 0)
+    return cli_pde_moving_mesh(argc - 1, argv + 1);
   if (argc >= 1 && strcmp(argv[0], "schrodinger") == 0)
     return cli_pde_schrodinger(argc - 1, argv + 1);
   if (argc >= 1 && strcmp(argv[0], "spectral-star") == 0)
@@ -230,10 +234,11 @@ static int pde_main(int argc, char **argv) {
     fputs(usage, stdout);
     fputs(cli_pde_spectral_usage, stdout);
     fputs(cli_pde_invariant_usage, stdout);
+    fputs(cli_pde_moving_mesh_usage, stdout);
     return CLI_EXIT_OK;
   }
   cli_error("pde", "which subcommand? run, b10, nls-long, schrodinger, spectral-star, tent-vi or "
-            "invariant "
+            "invariant, moving-mesh "
             "(see geomint pde --help)");
   return CLI_EXIT_USAGE;
 }
