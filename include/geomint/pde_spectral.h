@@ -64,8 +64,16 @@ gm_status gm_schrodinger_create(size_t n, double x0, double length, const double
                                 gm_schrodinger **out, gm_error *err);
 void gm_schrodinger_free(gm_schrodinger *s);
 
+/* Observers as gm_pde's: called every `every` steps (not at step 0) with the solver after the
+ * step (ψ, time, norm, energy readable); at most GM_SPECTRAL_MAX_OBSERVERS; a non-zero return
+ * stops advance with GM_ECALLBACK. GM_EINVAL for NULL fn, every = 0, too many. */
+#define GM_SPECTRAL_MAX_OBSERVERS 8
+typedef int (*gm_schrodinger_observer_fn)(gm_schrodinger *s, void *ctx);
+gm_status gm_schrodinger_add_observer(gm_schrodinger *s, size_t every,
+                                      gm_schrodinger_observer_fn fn, void *ctx, gm_error *err);
+
 /* Advance n_steps. Errors: GM_ENOCONV (the VI's inner solve; message has step and update),
- * GM_EDOMAIN (non-finite ψ or no real multiplier for the normalisation). */
+ * GM_EDOMAIN (non-finite ψ or no real multiplier for the normalisation), GM_ECALLBACK. */
 gm_status gm_schrodinger_advance(gm_schrodinger *s, size_t n_steps, gm_error *err);
 
 size_t gm_schrodinger_steps(const gm_schrodinger *s);
@@ -115,6 +123,11 @@ typedef struct gm_wave1d gm_wave1d;
 gm_status gm_wave1d_create(size_t n, double length, gm_hodge_kind star, double dt,
                            const double *u0, const double *v0, gm_wave1d **out, gm_error *err);
 void gm_wave1d_free(gm_wave1d *w);
+/* Observers as gm_schrodinger_add_observer (u, v, time, energy readable after the step). */
+typedef int (*gm_wave1d_observer_fn)(gm_wave1d *w, void *ctx);
+gm_status gm_wave1d_add_observer(gm_wave1d *w, size_t every, gm_wave1d_observer_fn fn, void *ctx,
+                                 gm_error *err);
+/* Advance n_steps; GM_EDOMAIN (non-finite value), GM_ECALLBACK (an observer stopped it). */
 gm_status gm_wave1d_advance(gm_wave1d *w, size_t n_steps, gm_error *err);
 double gm_wave1d_time(const gm_wave1d *w);
 const double *gm_wave1d_u(const gm_wave1d *w); /* n values, borrowed */

@@ -360,24 +360,36 @@ int cli_pde_schrodinger(int argc, char **argv) {
 
 /* ---- spectral Hodge star ------------------------------------------------------------------- */
 
-/* leapfrog run of mode m from its discrete forward mode; the frequency from the phase */
-static double run_mode(gm_wave1d *w, size_t n, long m, size_t steps, double dt) {
-  double phase = 0.0, pc = 1.0, ps = 0.0;
-  gm_error err = {{0}};
-  for (size_t k = 0; k < steps; k++) {
-    if (gm_wave1d_advance(w, 1, &err) != GM_OK) return NAN;
-    const double *u = gm_wave1d_u(w);
-    double c = 0.0, s = 0.0;
-    for (size_t j = 0; j < n; j++) {
-      double x = 2.0 * PI_ * (double)j / (double)n;
-      c += u[j] * cos((double)m * x);
-      s += u[j] * sin((double)m * x);
-    }
-    phase += atan2(s * pc - c * ps, c * pc + s * ps);
-    pc = c;
-    ps = s;
+/* leapfrog run of mode m from its discrete forward mode; the frequency from the phase, followed
+ * by an observer every step */
+typedef struct mode_phase {
+  size_t n;
+  long m;
+  double phase, pc, ps;
+} mode_phase;
+
+static int follow_mode(gm_wave1d *w, void *ctx) {
+  mode_phase *p = ctx;
+  const double *u = gm_wave1d_u(w);
+  double c = 0.0, s = 0.0;
+  for (size_t j = 0; j < p->n; j++) {
+    double x = 2.0 * PI_ * (double)j / (double)p->n;
+    c += u[j] * cos((double)p->m * x);
+    s += u[j] * sin((double)p->m * x);
   }
-  return phase / ((double)steps * dt);
+  p->phase += atan2(s * p->pc - c * p->ps, c * p->pc + s * p->ps);
+  p->pc = c;
+  p->ps = s;
+  return 0;
+}
+
+static double run_mode(gm_wave1d *w, size_t n, long m, size_t steps, double dt) {
+  mode_phase p = {n, m, 0.0, 1.0, 0.0};
+  gm_error err = {{0}};
+  if (gm_wave1d_add_observer(w, 1, follow_mode, &p, &err) != GM_OK ||
+      gm_wave1d_advance(w, steps, &err) != GM_OK)
+    return NAN;
+  return p.phase / ((double)steps * dt);
 }
 
 int cli_pde_spectral_star(int argc, char **argv) {

@@ -35,6 +35,12 @@ struct gm_wave1d {
   double *inv_star;    /* 1/(N·⋆̂_m), m = 0..n/2 (owned) */
   fftw_plan r2c, c2r;
   size_t steps;
+  struct {
+    size_t every;
+    gm_wave1d_observer_fn fn;
+    void *ctx;
+  } observers[GM_SPECTRAL_MAX_OBSERVERS];
+  size_t n_observers;
 };
 
 static double sinc_normalized(double x) {
@@ -166,7 +172,24 @@ gm_status gm_wave1d_advance(gm_wave1d *w, size_t n_steps, gm_error *err) {
     for (size_t j = 0; j < n; j++) sum += (w->u[j] + w->v[j]) * 0.0;
     if (!isfinite(sum))
       return gm_error_set(err, GM_EDOMAIN, "wave1d: non-finite value at step %zu", w->steps);
+    for (size_t o = 0; o < w->n_observers; o++)
+      if (w->steps % w->observers[o].every == 0 && w->observers[o].fn(w, w->observers[o].ctx) != 0)
+        return gm_error_set(err, GM_ECALLBACK, "wave1d: observer %zu stopped the run at step %zu",
+                            o, w->steps);
   }
+  return GM_OK;
+}
+
+gm_status gm_wave1d_add_observer(gm_wave1d *w, size_t every, gm_wave1d_observer_fn fn, void *ctx,
+                                 gm_error *err) {
+  if (w == NULL || fn == NULL) return gm_error_set(err, GM_EINVAL, "wave1d: NULL observer");
+  if (every == 0) return gm_error_set(err, GM_EINVAL, "wave1d: observer interval must be >= 1");
+  if (w->n_observers == GM_SPECTRAL_MAX_OBSERVERS)
+    return gm_error_set(err, GM_EINVAL, "wave1d: at most %d observers", GM_SPECTRAL_MAX_OBSERVERS);
+  w->observers[w->n_observers].every = every;
+  w->observers[w->n_observers].fn = fn;
+  w->observers[w->n_observers].ctx = ctx;
+  w->n_observers++;
   return GM_OK;
 }
 

@@ -35,6 +35,12 @@ struct gm_schrodinger {
   double norm0;
   int start_pending; /* VI: lev[2] holds ψ¹ from the RK4 start, not yet taken */
   size_t steps, iterations, ffts;
+  struct {
+    size_t every;
+    gm_schrodinger_observer_fn fn;
+    void *ctx;
+  } observers[GM_SPECTRAL_MAX_OBSERVERS];
+  size_t n_observers;
 };
 
 gm_schrodinger_options gm_schrodinger_options_defaults(void) {
@@ -320,7 +326,26 @@ gm_status gm_schrodinger_advance(gm_schrodinger *s, size_t n_steps, gm_error *er
     double c = creal(s->lev[1][0]) + cimag(s->lev[1][s->n / 2]);
     if (!isfinite(c))
       return gm_error_set(err, GM_EDOMAIN, "schrodinger: non-finite psi at step %zu", s->steps);
+    for (size_t o = 0; o < s->n_observers; o++)
+      if (s->steps % s->observers[o].every == 0 && s->observers[o].fn(s, s->observers[o].ctx) != 0)
+        return gm_error_set(err, GM_ECALLBACK, "schrodinger: observer %zu stopped the run at "
+                            "step %zu", o, s->steps);
   }
+  return GM_OK;
+}
+
+gm_status gm_schrodinger_add_observer(gm_schrodinger *s, size_t every,
+                                      gm_schrodinger_observer_fn fn, void *ctx, gm_error *err) {
+  if (s == NULL || fn == NULL) return gm_error_set(err, GM_EINVAL, "schrodinger: NULL observer");
+  if (every == 0)
+    return gm_error_set(err, GM_EINVAL, "schrodinger: observer interval must be >= 1");
+  if (s->n_observers == GM_SPECTRAL_MAX_OBSERVERS)
+    return gm_error_set(err, GM_EINVAL, "schrodinger: at most %d observers",
+                        GM_SPECTRAL_MAX_OBSERVERS);
+  s->observers[s->n_observers].every = every;
+  s->observers[s->n_observers].fn = fn;
+  s->observers[s->n_observers].ctx = ctx;
+  s->n_observers++;
   return GM_OK;
 }
 
