@@ -117,54 +117,113 @@ static void residual(gm_pde *p, const double *x, double *F) {
   }
 }
 
-static void add(gm_pde *p, size_t mr, size_t r, size_t mc, size_t c, double v) {
-  size_t B = 6 * p->d;
-  if (v != 0.0) gm_band_add(&p->band, p->pos[mr] * B + r, p->pos[mc] * B + c, v);
+/* ---- the Newton solve, condensed to the node values ------------------------------------------
+ * Cell m's 4d stage rows involve only its own Z_m and Y_m; its 2d continuity rows add Y_{m+1}.
+ * So per cell, with A = ∂(stage rows)/∂Z_m (4d×4d) and C = ∂(stage rows)/∂Y_m,
+ *   δZ_m = A⁻¹(R^Z_m − C δY_m),
+ * and the continuity rows δY_{m+1} − δY_m − Σ_k β_k δZ_{m,(i,k)} = R^Y_m become
+ *   δY_{m+1} + G_m δY_m = R^Y_m − E A⁻¹R^Z_m,   G_m = −I − E A⁻¹C,   (E v)_i = −Σ_k β_k v_{(i,k)},
+ * a cyclic block-bidiagonal system in the 2d_f node values of the components with an
+ * x-derivative (the 𝕂-free ones have Y = 0, see k_free). Rows of cell m sit at block m + 1
+ * (block 0 for the last cell), so the matrix is banded (kl = 2·2d_f − 1, ku = 0) plus the
+ * wrap-around block in the last columns: gm_bband, O(N) memory. Same equations as the full
+ * (Z, Y) system; the elimination order differs, so results agree to round-off, not bitwise. */
+
+/* the components with an x-derivative; returns their number d_f */
+static size_t k_coupled(const gm_pde *p, size_t *idx) {
+  size_t df = 0;
+  for (size_t a = 0; a < p->d; a++)
+    if (!k_free(p, a)) idx[df++] = a;
+  return df;
 }
 
-static gm_status jacobian(gm_pde *p, const double *x) {
-  size_t M = p->n / 2, d = p->d, B = 6 * d;
+/* Cell m at iterate x: factor A (into Am, pivots piv), AinvC = A⁻¹C (4d×2d_f, column-major by
+ * Y unknown) and AinvR = A⁻¹R^Z_m. */
+static gm_status cell_local(gm_pde *p, const double *x, size_t m, const double *Rm, double *Am,
+                            int *piv, double *AinvC, double *AinvR, const size_t *idx, size_t df) {
+  size_t d = p->d, B = 6 * d, nz = 4 * d;
   double dt = p->opt.dt, H = 2.0 * p->grid.h;
   const double *W = p->eq.W, *K = p->eq.K;
-  gm_band_zero(&p->band);
-  for (size_t m = 0; m < M; m++) {
-    size_t mn = (m + 1) % M;
-    for (size_t i = 0; i < 2; i++)
-      for (size_t j = 0; j < 2; j++) {
-        size_t q = zk(d, i, j);
-        double *Hs = p->hess + (m * 4 + 2 * i + j) * d * d;
-        gm_pde_hessian(p, x + m * B + q, Hs, p->work);
-        for (size_t a = 0; a < d; a++)
-          for (size_t b = 0; b < d; b++) {
-            for (size_t k = 0; k < 2; k++) {
-              add(p, m, q + a, m, zk(d, k, j) + b, W[a * d + b] * A_INV[i][k] / dt);
-              add(p, m, q + a, m, zk(d, i, k) + b, K[a * d + b] * A_INV[j][k] / H);
-            }
-            add(p, m, q + a, m, q + b, -Hs[a * d + b]);
-            add(p, m, q + a, m, yk(d, i) + b,
-                -K[a * d + b] * (A_INV[j][0] + A_INV[j][1]) / H);
-          }
-      }
-    for (size_t i = 0; i < 2; i++)
+  memset(Am, 0, nz * nz * sizeof *Am);
+  memset(AinvC, 0, nz * 2 * df * sizeof *AinvC);
+  for (size_t i = 0; i < 2; i++)
+    for (size_t j = 0; j < 2; j++) {
+      size_t q = zk(d, i, j);
+      gm_pde_hessian(p, x + m * B + q, p->hess, p->work);
       for (size_t a = 0; a < d; a++) {
-        if (k_free(p, a)) {
-          add(p, m, yk(d, i) + a, m, yk(d, i) + a, 1.0);
-          continue;
+        double *row = Am + (q + a) * nz;
+        for (size_t b = 0; b < d; b++) {
+          for (size_t k = 0; k < 2; k++) {
+            row[zk(d, k, j) + b] += W[a * d + b] * A_INV[i][k] / dt;
+            row[zk(d, i, k) + b] += K[a * d + b] * A_INV[j][k] / H;
+          }
+          row[q + b] -= p->hess[a * d + b];
         }
-        add(p, m, yk(d, i) + a, mn, yk(d, i) + a, 1.0);
-        add(p, m, yk(d, i) + a, m, yk(d, i) + a, -1.0 + BETA[0] + BETA[1]);
-        for (size_t k = 0; k < 2; k++) add(p, m, yk(d, i) + a, m, zk(d, i, k) + a, -BETA[k]);
+        for (size_t fb = 0; fb < df; fb++) /* C: column (i, fb) */
+          AinvC[(i * df + fb) * nz + q + a] =
+              -K[a * d + idx[fb]] * (A_INV[j][0] + A_INV[j][1]) / H;
       }
-  }
-  p->stats.factorizations++;
-  return gm_band_factor(&p->band);
+    }
+  if (gm_lu_factor(nz, Am, piv) != GM_OK) return GM_ESINGULAR;
+  for (size_t c = 0; c < 2 * df; c++) gm_lu_solve(nz, Am, piv, AinvC + c * nz);
+  memcpy(AinvR, Rm, nz * sizeof *AinvR); /* R^Z_m is the first 4d entries of the cell */
+  gm_lu_solve(nz, Am, piv, AinvR);
+  return GM_OK;
 }
 
-static void solve_natural(gm_pde *p, const double *rhs, double *out) {
-  size_t M = p->n / 2, B = 6 * p->d;
-  for (size_t m = 0; m < M; m++) memcpy(p->gp_b + p->pos[m] * B, rhs + m * B, B * sizeof *rhs);
-  gm_band_solve(&p->band, p->gp_b);
-  for (size_t m = 0; m < M; m++) memcpy(out + m * B, p->gp_b + p->pos[m] * B, B * sizeof *out);
+/* Solve J out = R at iterate x (R and out: 6d per cell, may alias). assemble: build and
+ * factor the condensed matrix first (else reuse the last factorization, made at this x). */
+static gm_status newton_solve(gm_pde *p, const double *x, const double *R, double *out,
+                              int assemble) {
+  size_t M = p->n / 2, d = p->d, B = 6 * d, nz = 4 * d, idx[GM_PDE_MAX_DIM];
+  size_t df = k_coupled(p, idx), nb = 2 * df;
+  int piv[4 * GM_PDE_MAX_DIM];
+  double *Am = p->gp_cell, *AinvC = Am + nz * nz, *AinvR = AinvC + nz * nb;
+  if (assemble) gm_bband_zero(&p->gp_band);
+  for (size_t m = 0; m < M; m++) {
+    if (cell_local(p, x, m, R + m * B, Am, piv, AinvC, AinvR, idx, df) != GM_OK)
+      return GM_ESINGULAR;
+    size_t rb = ((m + 1) % M) * nb, cb = m * nb;
+    for (size_t i = 0; i < 2; i++)
+      for (size_t fa = 0; fa < df; fa++) {
+        size_t a = idx[fa], r = rb + i * df + fa;
+        /* (E v)_(i,a) = −Σ_k β_k v_{(i,k),a} */
+        double ev = 0.0;
+        for (size_t k = 0; k < 2; k++) ev -= BETA[k] * AinvR[zk(d, i, k) + a];
+        p->gp_b[r] = R[m * B + yk(d, i) + a] - ev;
+        if (!assemble) continue;
+        gm_bband_add(&p->gp_band, r, r, 1.0);
+        for (size_t c = 0; c < nb; c++) {
+          double ec = 0.0;
+          for (size_t k = 0; k < 2; k++) ec -= BETA[k] * AinvC[c * nz + zk(d, i, k) + a];
+          gm_bband_add(&p->gp_band, r, cb + c, (c == i * df + fa ? -1.0 : 0.0) - ec);
+        }
+      }
+  }
+  if (assemble) {
+    p->stats.factorizations++;
+    if (gm_bband_factor(&p->gp_band) != GM_OK) return GM_ESINGULAR;
+  }
+  gm_bband_solve(&p->gp_band, p->gp_b); /* δY (block m = Y_m) */
+  for (size_t m = 0; m < M; m++) {
+    if (cell_local(p, x, m, R + m * B, Am, piv, AinvC, AinvR, idx, df) != GM_OK)
+      return GM_ESINGULAR;
+    const double *dY = p->gp_b + m * nb;
+    double yfree[2 * GM_PDE_MAX_DIM];
+    for (size_t i = 0; i < 2; i++)
+      for (size_t a = 0; a < d; a++) yfree[i * d + a] = R[m * B + yk(d, i) + a];
+    double *o = out + m * B;
+    for (size_t r = 0; r < nz; r++) {
+      double v = AinvR[r];
+      for (size_t c = 0; c < nb; c++) v -= AinvC[c * nz + r] * dY[c];
+      o[r] = v;
+    }
+    for (size_t i = 0; i < 2; i++) {
+      for (size_t a = 0; a < d; a++) o[yk(d, i) + a] = yfree[i * d + a]; /* free: δY = R^Y */
+      for (size_t fa = 0; fa < df; fa++) o[yk(d, i) + idx[fa]] = dY[i * df + fa];
+    }
+  }
+  return GM_OK;
 }
 
 static double maxabs(const double *x, size_t n) {
@@ -197,7 +256,7 @@ static double bil(size_t d, const double *v, const double *M, const double *u) {
 }
 
 /* tangents: J δX = −(∂F/∂zⁿ) δzⁿ, then δzⁿ⁺¹ by the time update; the law per cell */
-static void tangents(gm_pde *p) {
+static gm_status tangents(gm_pde *p) {
   size_t M = p->n / 2, d = p->d, B = 6 * d;
   double dt = p->opt.dt, H = 2.0 * p->grid.h;
   for (int v = 0; v < 2; v++) {
@@ -212,7 +271,7 @@ static void tangents(gm_pde *p) {
             for (size_t b = 0; b < d; b++) r += p->eq.W[a * d + b] * dz[(2 * m + j) * d + b];
             R[m * B + zk(d, i, j) + a] = r * (A_INV[i][0] + A_INV[i][1]) / dt;
           }
-    solve_natural(p, R, p->gp_t[v]);
+    if (newton_solve(p, p->gp_x, R, p->gp_t[v], 0) != GM_OK) return GM_ESINGULAR;
     time_update(p, p->gp_t[v], dz, p->tan[v][2]);
   }
   const double *U0 = p->tan[0][1], *U1 = p->tan[0][2], *V0 = p->tan[1][1], *V1 = p->tan[1][2];
@@ -241,6 +300,7 @@ static void tangents(gm_pde *p) {
     p->tan[v][1] = p->tan[v][2];
     p->tan[v][2] = t0;
   }
+  return GM_OK;
 }
 
 gm_status gm_pde_gauss_step(gm_pde *p, gm_error *err) {
@@ -258,11 +318,10 @@ gm_status gm_pde_gauss_step(gm_pde *p, gm_error *err) {
     if (!isfinite(maxabs(p->gp_F, nx)))
       return gm_error_set(err, GM_EDOMAIN, "pde gauss-prk: non-finite residual at step %zu",
                           p->steps + 1);
-    if (jacobian(p, x) != GM_OK)
+    for (size_t k = 0; k < nx; k++) p->gp_F[k] = -p->gp_F[k];
+    if (newton_solve(p, x, p->gp_F, p->gp_F, 1) != GM_OK)
       return gm_error_set(err, GM_ESINGULAR, "pde gauss-prk: singular Newton matrix at step %zu",
                           p->steps + 1);
-    for (size_t k = 0; k < nx; k++) p->gp_F[k] = -p->gp_F[k];
-    solve_natural(p, p->gp_F, p->gp_F);
     for (size_t k = 0; k < nx; k++) x[k] += p->gp_F[k];
     p->stats.newton_iterations++;
     double prev = last, scale = 1.0 + maxabs(x, nx);
@@ -276,10 +335,11 @@ gm_status gm_pde_gauss_step(gm_pde *p, gm_error *err) {
                         p->steps + 1, last);
   if (last > p->stats.max_newton_residual) p->stats.max_newton_residual = last;
   if (p->tan[0][0] != NULL) {
-    if (jacobian(p, x) != GM_OK)
+    /* the tangents use the Newton matrix at the converged iterate */
+    memset(p->gp_F, 0, nx * sizeof *p->gp_F);
+    if (newton_solve(p, x, p->gp_F, p->gp_F, 1) != GM_OK || tangents(p) != GM_OK)
       return gm_error_set(err, GM_ESINGULAR, "pde gauss-prk: singular tangent matrix at step %zu",
                           p->steps + 1);
-    tangents(p);
   }
   time_update(p, x, p->s, p->s_new);
   double *tmp = p->s_prev;

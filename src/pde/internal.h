@@ -26,6 +26,22 @@ void gm_band_solve(const gm_band *b, double *x);
 /* pos[i] = position of ring block i in the interleaved order (n entries written). */
 void gm_ring_positions(size_t n, size_t *pos);
 
+/* ---- banded LU with a dense border of the last nb columns (band_border.c) ------------------ */
+/* For a periodic chain of blocks in natural order: band kl below / ku above the diagonal, plus
+ * the wrap-around block in the last nb columns. Storage: band as gm_band (w = 2kl + ku + 1),
+ * border n·nb row-major. */
+typedef struct gm_bband {
+  size_t n, kl, ku, nb, w;
+  double *ab, *border; /* owned */
+  int *piv;            /* owned, n */
+} gm_bband;
+gm_status gm_bband_init(gm_bband *b, size_t n, size_t kl, size_t ku, size_t nb);
+void gm_bband_release(gm_bband *b);
+void gm_bband_zero(gm_bband *b);
+void gm_bband_add(gm_bband *b, size_t r, size_t c, double v); /* in the band or the border */
+gm_status gm_bband_factor(gm_bband *b);
+void gm_bband_solve(const gm_bband *b, double *x);
+
 struct gm_pde_observer {
   size_t every;
   gm_pde_observer_fn fn;
@@ -51,6 +67,8 @@ struct gm_pde {
   /* gauss-prk (gauss_prk.c): Newton unknowns (Z, Y) per cell, residual, band scratch, and the
    * tangents' (δZ, δY); 6d·n/2 each, owned */
   double *gp_x, *gp_F, *gp_b, *gp_t[2];
+  gm_bband gp_band; /* the Newton matrix condensed to the node values Y (gauss_prk.c) */
+  double *gp_cell;  /* one cell's A, A⁻¹C, A⁻¹R (owned) */
   double *msres; /* per-cell relative multisymplectic residual of the last step (owned) */
   int ms_valid;
   /* scalar wave schemes: u^{n−1}, u^n, u^{n+1} (owned, n each) */

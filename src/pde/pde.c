@@ -33,6 +33,8 @@ void gm_pde_free(gm_pde *p) {
   free(p->gp_x);
   free(p->gp_F);
   free(p->gp_b);
+  free(p->gp_cell);
+  gm_bband_release(&p->gp_band);
   free(p->gp_t[0]);
   free(p->gp_t[1]);
   free(p->aux[1]);
@@ -188,13 +190,22 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
     ok &= (p->u = vec(n)) != NULL;
     ok &= (p->u_new = vec(n)) != NULL;
   } else if (scheme->kind == GM_PDE_GAUSS_PRK) {
-    size_t nx = 3 * d * n; /* 6d per cell, n/2 cells */
-    ok &= gm_band_init(&p->band, nx, 18 * d - 1, 18 * d - 1) == GM_OK;
-    free(p->hess);
-    ok &= (p->hess = vec(2 * n * d * d)) != NULL;
+    /* 6d unknowns per cell, n/2 cells; the Newton matrix condensed to the node values of the
+     * 𝕂-coupled components (2d_f per cell, gauss_prk.c): band 2·2d_f − 1 below, border 2d_f */
+    size_t nx = 3 * d * n, df = 0;
+    for (size_t a = 0; a < d; a++) {
+      int coupled = 0;
+      for (size_t b = 0; b < d; b++) coupled |= eq->K[a * d + b] != 0.0 || eq->K[b * d + a] != 0.0;
+      df += (size_t)coupled;
+    }
+    size_t nb = 2 * df, ny = nb * (n / 2);
+    ok &= df > 0 && gm_bband_init(&p->gp_band, ny, 2 * nb - 1, 0, nb) == GM_OK;
     ok &= (p->gp_x = vec(nx)) != NULL;
     ok &= (p->gp_F = vec(nx)) != NULL;
-    ok &= (p->gp_b = vec(nx)) != NULL;
+    ok &= (p->gp_b = vec(ny > 0 ? ny : 1)) != NULL;
+    ok &= (p->gp_cell = vec(16 * d * d + 8 * d * d + 4 * d)) != NULL;
+    free(p->hess); /* one stage's Hessian at a time */
+    ok &= (p->hess = vec(d * d)) != NULL;
     if (options->track_variations)
       for (int k = 0; k < 2; k++) {
         ok &= (p->gp_t[k] = vec(nx)) != NULL;
