@@ -51,8 +51,8 @@ int main(int argc, char **argv) {
   FILE *json = bench_open_json(argc, argv, "pde_cost");
   if (json == NULL) return 1;
   /* gauss-prk with few steps (about a second per step at N = 10⁴), and at N = 10⁶ only when
-   * GM_PDE_COST_GAUSS_1E6=1 is set: its band (block size 18, bandwidth 53) needs about 11 GB
-   * there and a step takes minutes */
+   * GM_PDE_COST_GAUSS_1E6=1 is set: a step takes about a minute there (its condensed Newton
+   * matrix needs about 0.55 GB since issue 28; 11 GB before) */
   const char *schemes[] = {"lf", "ec", "ms", "euler-box", "preissmann", "box-sdirk2", "gauss-prk"};
   size_t sizes[] = {10000, 1000000};
   fprintf(json, "{\n  \"benchmark\": \"pde_cost\",\n  \"rows\": [\n");

@@ -17,7 +17,9 @@
  * squared arc length of cell k, with the terms Σₖ λⁿₖ ∂gₖ/∂(uⁿⱼ, xⁿⱼ) in the EL and X rows.
  * Unknowns of a step: u^{n+1}, x^{n+1}, λⁿ (block of 3 per node), t^{n+1} (border). On a ring
  * Σⱼ gⱼ ≡ 0, so node 0 carries no constraint (λ₀ = 0); the layer's rigid translation, which
- * every gⱼ leaves free, is fixed by the sum of the X rows, i.e. momentum conservation. */
+ * every gⱼ leaves free, is fixed by the sum of the X rows, i.e. momentum conservation.
+ * TIME_ADAPTIVE replaces the X rows by x^{n+1}_j = xⁿ_j and keeps EL and E: the time-adaptive
+ * (energy-preserving) VI of the seed's ODE section on a fixed spatial grid. */
 #include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
