@@ -275,9 +275,14 @@ int cli_simulate(const char *command, const cli_sim_config *c, cli_sim_result *r
                  c->checkpoint_path != NULL ? c->checkpoint_path : "");
         status = CLI_EXIT_INTERRUPTED;
       } else {
-        snprintf(r->error, sizeof r->error, "%s with %s failed at t = %.17g after %zu steps: %s",
+        const int sampled = why == gm_monitor_errmsg(r->monitor) && c->monitor_every > 1;
+        char stride[96] = "";
+        if (sampled) /* the monitor saw it at its first observation since it happened */
+          snprintf(stride, sizeof stride, " (the monitor observes every %zu steps)",
+                   c->monitor_every);
+        snprintf(r->error, sizeof r->error, "%s with %s failed at t = %.17g after %zu steps: %s%s",
                  gm_model_info_of(c->model)->name, c->scheme.method->name, r->t_final,
-                 r->stats.steps, why[0] ? why : gm_strerror(st));
+                 r->stats.steps, why[0] ? why : gm_strerror(st), stride);
         status = CLI_EXIT_FAILURE;
       }
       cli_error(command, "%s", r->error);

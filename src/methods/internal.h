@@ -61,6 +61,10 @@ gm_status gm_stage_solve_failed(gm_integrator *it, gm_status status, double t, d
  * polynomial extrapolated to the new stages. */
 void gm_stage_extrapolate(size_t s, size_t m, const double *e, const double *z_prev, double *z);
 
+/* Is ∇T the identity (the built-in T = ½|p|², src/problems/kinetic.c)? Then a stepper may use p
+ * itself where it would call kinetic_gradient (the same numbers, no call and no copy). */
+int gm_kinetic_is_identity(const gm_problem *problem);
+
 /* The eigen-decomposition A⁻¹ = V Λ V⁻¹ of a Runge–Kutta matrix, one block per real eigenvalue
  * and per conjugate pair (stage_transform.c): simplified Newton on s/2 complex systems of size n
  * instead of one of size sn. lambda[b]: eigenvalue of A⁻¹ of block b (Im > 0 for a pair);

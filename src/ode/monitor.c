@@ -9,6 +9,8 @@ struct gm_monitor {
   const gm_problem *problem;
   double energy0, max_rel_energy, last_rel_energy;
   double *invariant0, *max_drift;
+  double *value;      /* the invariants at the step being observed (evaluated once) */
+  int has_energy;
   size_t n_observed;
   char errmsg[GM_ERRMSG_SIZE];
 };
@@ -22,11 +24,13 @@ gm_status gm_monitor_create(const gm_problem *problem, const double *y0, gm_moni
   const size_t k = problem->n_invariants;
   mon->invariant0 = calloc(k ? k : 1, sizeof(double));
   mon->max_drift = calloc(k ? k : 1, sizeof(double));
-  if (!mon->invariant0 || !mon->max_drift) {
+  mon->value = calloc(k ? k : 1, sizeof(double));
+  if (!mon->invariant0 || !mon->max_drift || !mon->value) {
     gm_monitor_free(mon);
     return GM_ENOMEM;
   }
   mon->problem = problem;
+  mon->has_energy = gm_problem_has_energy(problem);
   mon->energy0 = gm_problem_energy(problem, y0);
   mon->max_rel_energy = gm_problem_has_energy(problem) ? 0.0 : NAN;
   mon->last_rel_energy = mon->max_rel_energy;
@@ -40,6 +44,7 @@ void gm_monitor_free(gm_monitor *mon) {
   if (mon == NULL) return;
   free(mon->invariant0);
   free(mon->max_drift);
+  free(mon->value);
   free(mon);
 }
 
@@ -48,9 +53,10 @@ int gm_monitor_observe(void *ctx, size_t step, double t, const double *y) {
   const gm_problem *pb = mon->problem;
   /* A non-finite energy or invariant stops the run here, before later observers (a CSV
    * writer added after the monitor) record the state; the drifts keep their last finite
-   * values. */
+   * values. Each invariant is evaluated once (issue 25: the check and the drift had each
+   * evaluated it). */
   double rel = NAN;
-  if (gm_problem_has_energy(pb)) {
+  if (mon->has_energy) {
     double h = gm_problem_energy(pb, y);
     if (!isfinite(h)) {
       gm_fail(mon->errmsg, sizeof mon->errmsg, GM_EDOMAIN,
@@ -68,13 +74,14 @@ int gm_monitor_observe(void *ctx, size_t step, double t, const double *y) {
               v, step, t);
       return 1;
     }
+    mon->value[i] = v;
   }
-  if (gm_problem_has_energy(pb)) {
+  if (mon->has_energy) {
     mon->last_rel_energy = rel;
     if (!(rel <= mon->max_rel_energy)) mon->max_rel_energy = rel;
   }
   for (size_t i = 0; i < pb->n_invariants; ++i) {
-    double drift = fabs(pb->invariants[i].value(pb->ctx, y) - mon->invariant0[i]);
+    double drift = fabs(mon->value[i] - mon->invariant0[i]);
     if (!(drift <= mon->max_drift[i])) mon->max_drift[i] = drift;
   }
   mon->n_observed++;

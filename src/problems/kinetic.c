@@ -24,6 +24,12 @@ int gm_free_kinetic_hessian(void *ctx, const double *p, double *hessian) {
   return 0;
 }
 
+/* Declared in methods/internal.h: the steppers skip the call (and its copy) for this T. */
+int gm_kinetic_is_identity(const gm_problem *problem) {
+  return problem->kinetic_gradient == gm_free_kinetic_gradient &&
+         *(const size_t *)problem->ctx == problem->dim;
+}
+
 void gm_free_kinetic_setup(gm_problem *pb) {
   pb->kinetic = gm_free_kinetic;
   pb->kinetic_gradient = gm_free_kinetic_gradient;

@@ -311,6 +311,74 @@ Test(cli, run_csv) {
   run_output_free(&r);
 }
 
+/* Without an output file the monitor observes every ceil(1024 / stages) steps and the last
+ * (issue 25: under 1 % of the run, bench/monitor_cost.c), says so, and its maxima are those of
+ * the steps it saw: at most the every-step maxima of --every 1, and equal to them where the
+ * largest error falls on an observed step. */
+Test(cli, run_monitor_stride) {
+  run_output r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 1000 --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  cr_assert_eq(json_number(o, "every"), 1);
+  cr_assert_eq(json_number(o, "monitor_every"), 61); /* ceil(1024 / 17) */
+  /* the initial state, steps 61, 122, ..., 976 and step 1000 */
+  cr_assert_eq(json_number(o, "monitor_observations"), 18);
+  const double sampled = json_number(o, "max_rel_energy_error");
+  cJSON_Delete(o);
+  run_output_free(&r);
+  r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 1000 --every 1 --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  o = parse_json(r.out);
+  cr_assert_eq(json_number(o, "monitor_every"), 1);
+  cr_assert_eq(json_number(o, "monitor_observations"), 1001);
+  const double all = json_number(o, "max_rel_energy_error");
+  /* measured: 1.530e-11 of 1.567e-11 */
+  cr_assert(sampled > 0.0 && sampled <= all && sampled > 0.9 * all, "%g vs %g", sampled, all);
+  cJSON_Delete(o);
+  run_output_free(&r);
+  r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 1000");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_assert(strstr(r.out, "the maxima are over every 61 steps and the last (18 observed") != NULL,
+            "%s", r.out);
+  run_output_free(&r);
+  r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 1000 --every 1");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_assert(strstr(r.out, "the maxima are over") == NULL, "%s", r.out);
+  run_output_free(&r);
+}
+
+/* Process start (issue 25): a run that needs no linear algebra, sparse solver, FFT or harminv
+ * loads none of them (src/lazy/ opens them on first use); one that does opens LAPACKE then and
+ * computes as before. LD_DEBUG=libs lists each library the loader initialises. */
+static int loaded(const char *err, const char *lib) {
+  const char *key = "calling init: ";
+  for (const char *at = strstr(err, key); at != NULL; at = strstr(at + 1, key)) {
+    const char *end = strchr(at, '\n');
+    const char *hit = strstr(at, lib);
+    if (hit != NULL && (end == NULL || hit < end)) return 1;
+  }
+  return 0;
+}
+
+Test(cli, run_loads_heavy_libraries_on_use) {
+  static const char *const heavy[] = {"liblapacke", "libopenblas", "libcholmod", "libumfpack",
+                                      "libfftw3", "libharminv", "libhdf5"};
+  run_output r = run_env("LD_DEBUG=libs", "run kepler --steps 1 --quiet");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  for (size_t k = 0; k < sizeof heavy / sizeof heavy[0]; ++k)
+    cr_expect(!loaded(r.err, heavy[k]), "%s loaded at start", heavy[k]);
+  run_output_free(&r);
+  r = run_env("LD_DEBUG=libs", "run kepler --method gauss-4 --solver simplified-newton --steps 10 "
+              "--quiet --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cr_expect(loaded(r.err, "liblapacke"), "simplified Newton on Gauss needs LAPACKE (dgeev)");
+  cJSON *o = parse_json(r.out);
+  cr_expect_eq(json_number(o, "steps"), 10);
+  cr_expect_lt(json_number(o, "max_rel_energy_error"), 1e-13); /* measured 8.9e-16 */
+  cJSON_Delete(o);
+  run_output_free(&r);
+}
+
 Test(cli, run_plot) {
   if (!have_gnuplot()) SKIP_TEST("gnuplot is not installed");
   run_output r = run_cli("run kepler --t-end 20 --plot energy.png --json");

@@ -24,6 +24,7 @@ typedef struct {
   double *q_eval;     /* compensated mode: q + Δq */
   double *p_eval;     /* compensated mode: p + Δp */
   int fsal;           /* first and last operations are kicks */
+  int kinetic_identity; /* ∇T(p) = p: drifts read p itself (no call, no copy) */
   int force_valid;    /* `force` holds ∇V at the current state's q */
 } splitting_work;
 
@@ -91,6 +92,7 @@ static gm_status init(gm_integrator *it) {
     return gm_fail(it->errmsg, sizeof it->errmsg, GM_EINVAL, "method '%s' never updates %s",
                    it->method->name, q_touched ? "p" : "q");
   w->fsal = w->ops[0].kick && w->ops[w->n_ops - 1].kick;
+  w->kinetic_identity = gm_kinetic_is_identity(it->problem);
   return GM_OK;
 }
 
@@ -111,39 +113,57 @@ static void invalidate(gm_integrator *it) {
   if (w != NULL) w->force_valid = 0;
 }
 
+#if defined(__GNUC__)
+#define GM_SPLIT_INLINE __attribute__((always_inline)) inline
+#else
+#define GM_SPLIT_INLINE inline
+#endif
+
 /* dst = src + c·v (dst may equal src). */
 static inline void axpy_into(size_t d, double *dst, const double *src, double c, const double *v) {
   for (size_t i = 0; i < d; ++i) dst[i] = src[i] + c * v[i];
 }
 
-/* Writes y_new; each half is first written from y, then updated in place. */
-static inline gm_status step_direct(gm_integrator *it, double t, double h, const double *y,
-                             double *y_new) {
+/* Writes y_new; each half is first written from y, then updated in place. Inlined for d = 2
+ * and 3 (one body in the plane or in space; issue 25: Kepler's step is mostly this loop's
+ * overhead), where the axpy loops unroll. */
+static GM_SPLIT_INLINE gm_status step_direct_d(gm_integrator *it, double t, double h,
+                                               const double *y, double *y_new, size_t d) {
   splitting_work *w = it->work;
-  const size_t d = it->dim;
   const double *q_old = y, *p_old = y + d;
   double *q = y_new, *p = y_new + d;
-  size_t k = 0;
+  const split_op *op = w->ops, *end = w->ops + w->n_ops;
   if (w->fsal && w->force_valid) { /* the first kick reuses the last force */
-    axpy_into(d, p, p_old, w->ops[0].coef * h, w->force);
-    k = 1;
+    axpy_into(d, p, p_old, op->coef * h, w->force);
+    ++op;
   }
   w->force_valid = 0;
-  for (; k < w->n_ops; ++k) {
-    const split_op op = w->ops[k];
+  for (; op < end; ++op) {
     gm_status st;
-    if (op.kick) {
-      st = gm_eval_potential_gradient(it, t, op.eval_old ? q_old : q, w->force);
+    if (op->kick) {
+      st = gm_eval_potential_gradient(it, t, op->eval_old ? q_old : q, w->force);
       if (st != GM_OK) return st;
-      axpy_into(d, p, op.first ? p_old : p, op.coef * h, w->force);
+      axpy_into(d, p, op->first ? p_old : p, op->coef * h, w->force);
     } else {
-      if ((st = gm_eval_kinetic_gradient(it, t, op.eval_old ? p_old : p, w->velocity)) != GM_OK)
-        return st;
-      axpy_into(d, q, op.first ? q_old : q, op.coef * h, w->velocity);
+      const double *at = op->eval_old ? p_old : p, *v = at;
+      if (!w->kinetic_identity) {
+        if ((st = gm_eval_kinetic_gradient(it, t, at, w->velocity)) != GM_OK) return st;
+        v = w->velocity;
+      }
+      axpy_into(d, q, op->first ? q_old : q, op->coef * h, v);
     }
   }
   w->force_valid = w->fsal;
   return GM_OK;
+}
+
+static gm_status step_direct(gm_integrator *it, double t, double h, const double *y,
+                             double *y_new) {
+  switch (it->dim) {
+    case 2: return step_direct_d(it, t, h, y, y_new, 2);
+    case 3: return step_direct_d(it, t, h, y, y_new, 3);
+    default: return step_direct_d(it, t, h, y, y_new, it->dim);
+  }
 }
 
 /* Accumulate the increments Δq, Δp; forces are evaluated at q + Δq, p + Δp. */
@@ -164,8 +184,12 @@ static gm_status step_increment(gm_integrator *it, double t, double h, const dou
       axpy_into(d, dp, dp, op.coef * h, w->force);
     } else {
       axpy_into(d, w->p_eval, p, 1.0, dp);
-      if ((st = gm_eval_kinetic_gradient(it, t, w->p_eval, w->velocity)) != GM_OK) return st;
-      axpy_into(d, dq, dq, op.coef * h, w->velocity);
+      const double *v = w->p_eval;
+      if (!w->kinetic_identity) {
+        if ((st = gm_eval_kinetic_gradient(it, t, w->p_eval, w->velocity)) != GM_OK) return st;
+        v = w->velocity;
+      }
+      axpy_into(d, dq, dq, op.coef * h, v);
     }
   }
   return GM_OK;

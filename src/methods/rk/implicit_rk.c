@@ -45,6 +45,9 @@ typedef struct {
   double *f;           /* s·n values f(Y_j) */
   double *stage;       /* n */
   double *stage_change; /* s: positions-only iteration, each stage's move since its evaluation */
+  double *stage_force;  /* s: positions-only iteration, max |K(g_k)| of each stage */
+  double *base;         /* s·d: positions-only iteration, h c_i K(p) of the step */
+  int kinetic_identity; /* K = ∇T is the identity: K(x) = x without a call */
   double *jac;         /* n×n, with the Newton solvers */
   /* simplified Newton through the eigenvalues of A (Gauss rows; stage_transform.c): */
   gm_stage_transform *tr;
@@ -123,9 +126,13 @@ static gm_status init(gm_integrator *it) {
   w->f = calloc(s * n, sizeof(double));
   w->stage = calloc(n, sizeof(double));
   w->stage_change = calloc(s, sizeof(double));
+  w->stage_force = calloc(s, sizeof(double));
+  w->base = calloc(s * it->dim + 1, sizeof(double));
+  w->kinetic_identity = it->problem->kind == GM_PROBLEM_SEPARABLE &&
+                        gm_kinetic_is_identity(it->problem);
   double *at = calloc(s * s, sizeof(double));
   if (!w->d || !w->extrap || !w->a2 || !w->ba || !w->fextrap || !w->z || !w->z_prev || !w->z_next || !w->f ||
-      !w->stage || !w->stage_change || !at) {
+      !w->stage || !w->stage_change || !w->stage_force || !w->base || !at) {
     free(at);
     return GM_ENOMEM;
   }
@@ -248,6 +255,8 @@ static void release(gm_integrator *it) {
   free(w->f);
   free(w->stage);
   free(w->stage_change);
+  free(w->stage_force);
+  free(w->base);
   free(w->jac);
   gm_stage_transform_free(w->tr);
   free(w->clu);
@@ -435,17 +444,119 @@ static gm_status solve_fixed_point(implicit_rk_work *w) {
                  FIXED_POINT_MAX_ITERATIONS, history[0]);
 }
 
+/* fmax(m, x) for m not NaN, without the library call (fmax is one when errno matters): x when
+ * it is larger, else m, so a NaN x leaves m as fmax does. */
+static inline double max_of(double m, double x) { return x > m ? x : m; }
+/* The same, but a NaN x wins (as in gm_norm_inf, whose value this reproduces in parts). */
+static inline double max_or_nan(double m, double x) { return x > m || isnan(x) ? x : m; }
+
+#if defined(__GNUC__)
+#define GM_ALWAYS_INLINE __attribute__((always_inline)) inline
+#define GM_UNROLL _Pragma("GCC unroll 8")
+#else
+#define GM_ALWAYS_INLINE inline
+#define GM_UNROLL
+#endif
+
+/* The stage update of the iteration on positions, z_i = base_i − h² Σ_k (A²)_ik K(g_k), summed
+ * in the order k = 1..s; each stage's largest move from where its force was evaluated
+ * (moved_i), the largest of those (*change) and of |z_i| (*scale). Inlined with s constant
+ * (stage_update below), so that the sum over k unrolls with the row of A² in registers. */
+static GM_ALWAYS_INLINE void stage_update_s(size_t s, size_t d, const double *a2,
+                                            const double *kg, const double *base, double hh,
+                                            const double *z_eval, double *z, double *moved,
+                                            double *change, double *scale) {
+  double c = *change, sc = *scale;
+  for (size_t i = 0; i < s; ++i) {
+    const double *ai = a2 + i * s;
+    double m = 0.0;
+    for (size_t r = 0; r < d; ++r) {
+      double sum = 0.0;
+      GM_UNROLL
+      for (size_t k = 0; k < s; ++k) sum += ai[k] * kg[k * d + r];
+      const double zi = base[i * d + r] - hh * sum;
+      m = max_of(m, fabs(zi - z_eval[i * d + r]));
+      sc = max_of(sc, fabs(zi));
+      z[i * d + r] = zi;
+    }
+    moved[i] = m;
+    c = max_of(c, m);
+  }
+  *change = c;
+  *scale = sc;
+}
+
+static void stage_update(size_t s, size_t d, const double *a2, const double *kg,
+                         const double *base, double hh, const double *z_eval, double *z,
+                         double *moved, double *change, double *scale) {
+  switch (s) {
+#define STAGES(n) \
+  case n: stage_update_s(n, d, a2, kg, base, hh, z_eval, z, moved, change, scale); return;
+    STAGES(1) STAGES(2) STAGES(3) STAGES(4) STAGES(5) STAGES(6)
+#undef STAGES
+    default: stage_update_s(s, d, a2, kg, base, hh, z_eval, z, moved, change, scale);
+  }
+}
+
+/* Forces at the new stages predicted from the previous step's (w->fextrap, s × (s + 1)):
+ * out_i = e_is K(g(q_n)) + Σ_j e_ij kg_prev_j, in that order; inlined with s constant. */
+static GM_ALWAYS_INLINE void force_predict_s(size_t s, size_t d, const double *e,
+                                             const double *kg0, const double *kg_prev,
+                                             double *out) {
+  for (size_t i = 0; i < s; ++i) {
+    const double *ei = e + i * (s + 1);
+    for (size_t r = 0; r < d; ++r) {
+      double f_i = kg0[r] * ei[s];
+      GM_UNROLL
+      for (size_t j = 0; j < s; ++j) f_i += ei[j] * kg_prev[j * d + r];
+      out[i * d + r] = f_i;
+    }
+  }
+}
+
+static void force_predict(size_t s, size_t d, const double *e, const double *kg0,
+                          const double *kg_prev, double *out) {
+  switch (s) {
+#define STAGES(n) \
+  case n: force_predict_s(n, d, e, kg0, kg_prev, out); return;
+    STAGES(1) STAGES(2) STAGES(3) STAGES(4) STAGES(5) STAGES(6)
+#undef STAGES
+    default: force_predict_s(s, d, e, kg0, kg_prev, out);
+  }
+}
+
+/* K(x) into out, or x itself when K is the identity (then out is not written). */
+static inline gm_status kinetic_map(implicit_rk_work *w, const double *x, double *out,
+                                    const double **result) {
+  if (w->kinetic_identity) {
+    *result = x;
+    return GM_OK;
+  }
+  *result = out;
+  return gm_eval_kinetic_gradient(w->it, w->t, x, out);
+}
+
 /* q'' = f(q) with T(p) = ½pᵀM⁻¹p, K = ∇T linear: Q_i = q + h c_i K(p) − h² Σ_k (A²)_ik K(g_k),
  * g_k = ∇V(Q_k); then q_{n+1} = q + h K(p) − h² Σ_k (bᵀA)_k K(g_k), p_{n+1} = p − h Σ b_k g_k
  * (the Runge–Kutta–Nyström form of a Runge–Kutta method; Hairer, Nørsett & Wanner, Solving
- * ODEs I (1993), §II.14). The unknowns are the s·d stage positions only; z holds them. */
+ * ODEs I (1993), §II.14). The unknowns are the s·d stage positions only; z holds them.
+ * Cost (issue 25; instructions per force evaluation, callgrind, bench/ode_eval_cost.c, Kepler,
+ * gauss-6): the sums over stages unrolled with s constant, max without libm's fmax, the force
+ * norm kept per stage instead of recomputed each iteration, h c_i K(p) once per step, and no
+ * call for K when it is the identity; the same numbers in the same order as before. */
 static gm_status step_positions(implicit_rk_work *w, int have_prev, double *y_new, double *delta) {
   gm_integrator *it = w->it;
   const size_t d = it->dim, s = w->tab->n_stages;
-  const double *q = w->y, *p = w->y + d, h = w->h;
-  double *kp = w->stage, *g = w->f, *kg = w->f + s * d; /* f has room for 2·s·d */
-  gm_status st = gm_eval_kinetic_gradient(it, w->t, p, kp);
+  const double *q = w->y, *p = w->y + d, h = w->h, hh = h * h;
+  double *g = w->f, *kg = w->f + s * d; /* f has room for 2·s·d */
+  const double *kp;
+  gm_status st = kinetic_map(w, p, w->stage, &kp);
   if (st != GM_OK) return st;
+  double *base = w->base;
+  for (size_t i = 0; i < s; ++i) {
+    const double hc = h * w->tab->c[i];
+    for (size_t r = 0; r < d; ++r) base[i * d + r] = hc * kp[r];
+  }
   /* Starting values Z_i = h c_i K(p) − h² Σ_k (A²)_ik K(g_k) from forces g_k predicted at the
    * new stages: the force at q_n (one evaluation) and, after a step of the same size, the
    * previous step's stage forces, all on the previous collocation polynomial u (u(t_n) = q_n),
@@ -454,33 +565,25 @@ static gm_status step_positions(implicit_rk_work *w, int have_prev, double *y_ne
    * round-off floor: 2e9–9e9 with the positions of u extrapolated (degree s, as the other
    * solvers start), 4e8–1.5e9 from the stage forces alone, 2e7–2e8 with the force at q_n too:
    * one iteration (s evaluations) fewer for the one evaluation (docs/work-precision.md). */
-  double *g0 = g, *kg0 = w->stage + d; /* free until the iteration starts; stage is 2d */
+  double *g0 = g; /* free until the iteration starts */
+  const double *kg0;
   if ((st = gm_eval_potential_gradient(it, w->t, q, g0)) != GM_OK) return st;
-  if ((st = gm_eval_kinetic_gradient(it, w->t, g0, kg0)) != GM_OK) return st;
-  const int extrapolate = have_prev && w->fextrap != NULL;
-  for (size_t i = 0; i < s; ++i) {
-    const double *e = w->fextrap + i * (s + 1);
-    for (size_t r = 0; r < d; ++r) {
-      double f_i = kg0[r];
-      if (extrapolate) {
-        f_i *= e[s];
-        for (size_t j = 0; j < s; ++j) f_i += e[j] * w->z_prev[j * d + r];
-      }
-      kg[i * d + r] = f_i;
-    }
-  }
-  for (size_t i = 0; i < s; ++i)
-    for (size_t r = 0; r < d; ++r) {
-      double sum = 0.0;
-      for (size_t k = 0; k < s; ++k) sum += w->a2[i * s + k] * kg[k * d + r];
-      w->z[i * d + r] = h * w->tab->c[i] * kp[r] - h * h * sum;
-    }
+  if ((st = kinetic_map(w, g0, w->stage + d, &kg0)) != GM_OK) return st; /* stage is 2d */
+  if (have_prev && w->fextrap != NULL)
+    force_predict(s, d, w->fextrap, kg0, w->z_prev, kg);
+  else
+    for (size_t i = 0; i < s; ++i) memcpy(kg + i * d, kg0, d * sizeof *kg);
   /* The iteration, stage by stage: the force of stage k is evaluated again only while Z_k has
    * moved from where it was last evaluated (z_eval) by more than the stopping threshold, so
    * stages that converge early (Z_k ∝ c_k² h²: the first ones) stop costing evaluations. The
    * step has converged when every force is at its stage to within that threshold. */
   double *z_eval = w->z_next, *pos = w->z_next + s * d; /* z_next is s·2d */
   double *moved = w->stage_change; /* s: |Z_k − z_eval_k| */
+  double *force_size = w->stage_force; /* s: max_r |K(g_k)_r|, set at each evaluation */
+  {
+    double unused_change = 0.0, unused_scale = 0.0;
+    stage_update(s, d, w->a2, kg, base, hh, w->z, w->z, moved, &unused_change, &unused_scale);
+  }
   for (size_t k = 0; k < s; ++k) moved[k] = INFINITY;
   const double size_q = gm_norm_inf(d, q), size_terms = h * gm_norm_inf(d, kp);
   double history[3] = {INFINITY, INFINITY, INFINITY}, threshold = 0.0;
@@ -488,10 +591,20 @@ static gm_status step_positions(implicit_rk_work *w, int have_prev, double *y_ne
   for (;;) {
     for (size_t k = 0; k < s; ++k) {
       if (moved[k] <= threshold) continue;
-      for (size_t r = 0; r < d; ++r) pos[r] = q[r] + w->z[k * d + r];
-      if ((st = gm_eval_potential_gradient(it, w->t, pos, g + k * d)) != GM_OK) return st;
-      if ((st = gm_eval_kinetic_gradient(it, w->t, g + k * d, kg + k * d)) != GM_OK) return st;
-      memcpy(z_eval + k * d, w->z + k * d, d * sizeof *w->z);
+      const double *zk = w->z + k * d;
+      double *gk = g + k * d, *kgk = kg + k * d, *ek = z_eval + k * d;
+      for (size_t r = 0; r < d; ++r) pos[r] = q[r] + zk[r];
+      if ((st = gm_eval_potential_gradient(it, w->t, pos, gk)) != GM_OK) return st;
+      if (w->kinetic_identity)
+        for (size_t r = 0; r < d; ++r) kgk[r] = gk[r];
+      else if ((st = gm_eval_kinetic_gradient(it, w->t, gk, kgk)) != GM_OK)
+        return st;
+      double size = 0.0;
+      for (size_t r = 0; r < d; ++r) {
+        ek[r] = zk[r];
+        size = max_or_nan(size, fabs(kgk[r]));
+      }
+      force_size[k] = size;
     }
     if (++iter > FIXED_POINT_MAX_ITERATIONS)
       return gm_fail(it->errmsg, sizeof it->errmsg, GM_ENOCONV,
@@ -502,20 +615,10 @@ static gm_status step_positions(implicit_rk_work *w, int have_prev, double *y_ne
     /* The round-off floor: of q, of the stages (q may be 0), and of the terms that make a stage,
      * h c_i K(p) and h² (A² K(g))_i, which exceed both when h‖Ω‖ is large (the harmonic
      * oscillator at h = 12: the iteration stalls at 10 × the floor of q) */
-    double change = 0.0, scale = fmax(size_q, size_terms + h * h * w->a2_norm * gm_norm_inf(s * d, kg));
-    for (size_t i = 0; i < s; ++i) {
-      double m = 0.0;
-      for (size_t r = 0; r < d; ++r) {
-        double sum = 0.0;
-        for (size_t k = 0; k < s; ++k) sum += w->a2[i * s + k] * kg[k * d + r];
-        double zi = h * w->tab->c[i] * kp[r] - h * h * sum;
-        m = fmax(m, fabs(zi - z_eval[i * d + r]));
-        scale = fmax(scale, fabs(zi));
-        w->z[i * d + r] = zi;
-      }
-      moved[i] = m;
-      change = fmax(change, m);
-    }
+    double force_norm = 0.0;
+    for (size_t k = 0; k < s; ++k) force_norm = max_or_nan(force_norm, force_size[k]);
+    double change = 0.0, scale = fmax(size_q, size_terms + hh * w->a2_norm * force_norm);
+    stage_update(s, d, w->a2, kg, base, hh, z_eval, w->z, moved, &change, &scale);
     const double floor = ROUNDOFF_FLOOR * fmax(scale, 1e-300);
     threshold = POSITIONS_SKIP * floor;
     if (!isfinite(change))
@@ -533,7 +636,7 @@ static gm_status step_positions(implicit_rk_work *w, int have_prev, double *y_ne
       dq += w->ba[k] * kg[k * d + r];
       dp += w->tab->b[k] * g[k * d + r];
     }
-    double inc_q = h * kp[r] - h * h * dq, inc_p = -h * dp;
+    double inc_q = h * kp[r] - hh * dq, inc_p = -h * dp;
     if (delta != NULL) {
       delta[r] = inc_q;
       delta[d + r] = inc_p;
