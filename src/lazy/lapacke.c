@@ -1,6 +1,7 @@
 /* LAPACKE, opened on first use (lazy.h): LU factors and solves above the built-in small LU,
  * symmetric eigenproblems (src/core/linalg.c) and the eigenvectors of a Runge–Kutta matrix
- * (src/methods/rk/stage_transform.c). */
+ * (src/methods/rk/stage_transform.c), singular values for the moving-mesh VI's conditioning
+ * (src/pde/moving_mesh.c). */
 #include <lapacke.h>
 
 #include "lazy/lazy.h"
@@ -13,6 +14,8 @@ static struct {
   lapack_int (*dgetrs_work)(int, char, lapack_int, lapack_int, const double *, lapack_int,
                             const lapack_int *, double *, lapack_int);
   lapack_int (*dsyev)(int, char, char, lapack_int, double *, lapack_int, double *);
+  lapack_int (*dgesvd)(int, char, char, lapack_int, lapack_int, double *, lapack_int, double *,
+                       double *, lapack_int, double *, lapack_int, double *);
 } api;
 
 /* the pointers have the headers' types (a mismatch is a compile error with -Werror) */
@@ -21,6 +24,7 @@ static void check_types(void) {
   (void)sizeof(api.dgetrf_work == &LAPACKE_dgetrf_work);
   (void)sizeof(api.dgetrs_work == &LAPACKE_dgetrs_work);
   (void)sizeof(api.dsyev == &LAPACKE_dsyev);
+  (void)sizeof(api.dgesvd == &LAPACKE_dgesvd);
 }
 
 static void load(void) {
@@ -28,7 +32,8 @@ static void load(void) {
   lib.ok = gm_lazy_open(&lib) && gm_lazy_find(&lib, "LAPACKE_dgeev", &api.dgeev, sizeof api.dgeev) &&
            gm_lazy_find(&lib, "LAPACKE_dgetrf_work", &api.dgetrf_work, sizeof api.dgetrf_work) &&
            gm_lazy_find(&lib, "LAPACKE_dgetrs_work", &api.dgetrs_work, sizeof api.dgetrs_work) &&
-           gm_lazy_find(&lib, "LAPACKE_dsyev", &api.dsyev, sizeof api.dsyev);
+           gm_lazy_find(&lib, "LAPACKE_dsyev", &api.dsyev, sizeof api.dsyev) &&
+           gm_lazy_find(&lib, "LAPACKE_dgesvd", &api.dgesvd, sizeof api.dgesvd);
 }
 
 static int ready(void) {
@@ -58,4 +63,11 @@ lapack_int LAPACKE_dgetrs_work(int matrix_layout, char trans, lapack_int n, lapa
 lapack_int LAPACKE_dsyev(int matrix_layout, char jobz, char uplo, lapack_int n, double *a,
                          lapack_int lda, double *w) {
   return ready() ? api.dsyev(matrix_layout, jobz, uplo, n, a, lda, w) : -1;
+}
+
+lapack_int LAPACKE_dgesvd(int matrix_layout, char jobu, char jobvt, lapack_int m, lapack_int n,
+                          double *a, lapack_int lda, double *s, double *u, lapack_int ldu,
+                          double *vt, lapack_int ldvt, double *superb) {
+  return ready() ? api.dgesvd(matrix_layout, jobu, jobvt, m, n, a, lda, s, u, ldu, vt, ldvt, superb)
+                 : -1;
 }
