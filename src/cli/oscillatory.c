@@ -7,13 +7,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <sys/stat.h>
 
 #include "cli/cli.h"
 #include "geomint/experiments.h"
 
 static const char usage[] =
-    "usage: geomint oscillatory EXPERIMENT [--out DIR] [--points N] [--no-plot]\n\n"
+    "usage: geomint oscillatory EXPERIMENT [--out DIR] [--points N] [--no-plot] [--json]\n\n"
     "Experiments with split potentials V = U + W (seed 000 ch. 2, docs/oscillatory.md):\n"
     "  resonance       toy problem U = q^2/2, W = omega^2 q^2/2 from q = 0, p = 1: max |H - H0|\n"
     "                  over T = 1000 with h = 0.1 against omega h / pi in (0, 4.5] (N points,\n"
@@ -68,6 +69,12 @@ static FILE *open_file(const char *path) {
 
 /* Create an integrator of `method` (with `substeps` > 0 for impulse rows) at the model's
  * initial state; prints the error. */
+static double wall_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static gm_integrator *start(const gm_model *model, const char *method, size_t substeps) {
   const gm_method *m = cli_find_method(CMD, method);
   if (m == NULL) return NULL;
@@ -281,7 +288,7 @@ static int fpu_final(const gm_model *model, const char *method, double h, double
  * I error exceeds 1e-2, the largest step with I error ≤ 1e-2, the error at 5 × 2/ω = 0.2 and
  * the share of the scanned steps in [0.2, 0.3] that reach 1e-2. The fast resonances hω = kπ of
  * FPU's ω = 50 are at h = 0.0628 k. */
-static int experiment_step_scan(const char *dir) {
+static int experiment_step_scan(const char *dir, int json) {
   static const struct {
     const char *name;
     size_t substeps;
@@ -315,11 +322,15 @@ static int experiment_step_scan(const char *dir) {
     return CLI_EXIT_FAILURE;
   }
   fprintf(f, "method,substeps,h,h_omega_over_pi,I_error\n");
+  cJSON *jrows = json ? cJSON_CreateArray() : NULL;
+  if (!json) {
   printf("step-scan: FPU (l = 3, omega = 50), T = 200; I error as in work-precision; steps\n"
          "  h = 200/n from 2/omega = 0.04 to 0.3 (h*omega/pi on a 1%% grid, and h = 0.2);\n"
          "  resonances h*omega = k*pi at h = 0.0628 k\n");
   printf("  %-24s %4s %12s %10s %8s %12s %12s\n", "method", "n", "first fail h", "largest h",
          "h/(2/w)", "I err at 0.2", "pass >= 0.2");
+  }
+  const double t_scan = wall_now();
   for (size_t r = 0; r < N_ROWS; ++r) {
     double largest = 0.0, first_fail = NAN, at_02 = NAN;
     size_t n_above = 0, pass_above = 0;
@@ -346,16 +357,35 @@ static int experiment_step_scan(const char *dir) {
         if (ierr <= 1e-2) pass_above++;
       }
     }
-    printf("  %-24s %4zu %12.4g %10.4g %8.2f %12.3e %6zu of %zu\n", rows[r].name,
-           rows[r].substeps, first_fail, largest, largest / 0.04, at_02, pass_above, n_above);
+    if (json) {
+      cJSON *j = cJSON_CreateObject();
+      cJSON_AddStringToObject(j, "method", rows[r].name);
+      cJSON_AddNumberToObject(j, "substeps", (double)rows[r].substeps);
+      cJSON_AddItemToObject(j, "first_fail_h", cli_json_number(first_fail));
+      cJSON_AddItemToObject(j, "largest_h", cli_json_number(largest));
+      cJSON_AddItemToObject(j, "i_error_at_0.2", cli_json_number(at_02));
+      cJSON_AddNumberToObject(j, "pass_above_0.2", (double)pass_above);
+      cJSON_AddNumberToObject(j, "steps_above_0.2", (double)n_above);
+      cJSON_AddItemToArray(jrows, j);
+    } else {
+      printf("  %-24s %4zu %12.4g %10.4g %8.2f %12.3e %6zu of %zu\n", rows[r].name,
+             rows[r].substeps, first_fail, largest, largest / 0.04, at_02, pass_above, n_above);
+    }
   }
   fclose(f);
   gm_model_free(model);
+  if (json) {
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddItemToObject(o, "rows", jrows);
+    cJSON_AddNumberToObject(o, "wall_s", wall_now() - t_scan);
+    cJSON_AddStringToObject(o, "csv", csv);
+    return cli_json_print(o);
+  }
   printf("  (n: impulse substeps, 0 = the row's default; data: %s)\n", csv);
   return CLI_EXIT_OK;
 }
 
-static int experiment_work_precision(const char *dir, int plot) {
+static int experiment_work_precision(const char *dir, int plot, int json) {
   static const char *const rows[] = {"imex",
                                      "impulse",
                                      "mollified-impulse-sinc",
@@ -394,12 +424,16 @@ static int experiment_work_precision(const char *dir, int plot) {
     return CLI_EXIT_FAILURE;
   }
   fprintf(f, "method,h,slow_error,I_error,I_T_error,force_evals\n");
+  cJSON *jrows = json ? cJSON_CreateArray() : NULL;
+  const double t_wp = wall_now();
+  if (!json) {
   printf("work-precision: FPU (l = 3, omega = 50), T = 200, against blanes-moan-6 h = 0.0002;\n"
          "  I error = max over the blocks [2k, 2k+2) of |mean I - mean I_ref|; I(T) error =\n"
          "  |I(T) - I_ref(T)|; slow error = max |x0, y0 - ref| at T. Verlet's stability limit\n"
          "  2/omega = 0.04, 5x that = 0.2\n");
   printf("  %-24s %9s %8s %11s %11s %11s %10s\n", "method", "largest h", "h/(2/w)", "I err",
          "I(T) err", "slow err", "evals/step");
+  }
   double best_h_comp = 0.0;
   const char *best_comp = NULL;
   double best_evals = INFINITY;
@@ -435,13 +469,40 @@ static int experiment_work_precision(const char *dir, int plot) {
         best_h_comp = largest;
       }
     }
-    printf("  %-24s %9g %8.2f %11.3e %11.3e %11.3e %10.0f\n", rows[r], largest, largest / 0.04,
-           i_err_there, it_there, slow_there, evals);
+    if (json) {
+      cJSON *j = cJSON_CreateObject();
+      cJSON_AddStringToObject(j, "method", rows[r]);
+      cJSON_AddItemToObject(j, "largest_h", cli_json_number(largest));
+      cJSON_AddItemToObject(j, "i_error", cli_json_number(i_err_there));
+      cJSON_AddItemToObject(j, "i_t_error", cli_json_number(it_there));
+      cJSON_AddItemToObject(j, "slow_error", cli_json_number(slow_there));
+      cJSON_AddItemToObject(j, "evals_per_step", cli_json_number(evals));
+      cJSON_AddItemToArray(jrows, j);
+    } else {
+      printf("  %-24s %9g %8.2f %11.3e %11.3e %11.3e %10.0f\n", rows[r], largest,
+             largest / 0.04, i_err_there, it_there, slow_there, evals);
+    }
   }
   fclose(f);
   gm_model_free(model);
+  if (json) {
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddItemToObject(o, "rows", jrows);
+    cJSON_AddStringToObject(o, "best_composition", best_comp ? best_comp : "none");
+    cJSON_AddNumberToObject(o, "best_composition_h", best_h_comp);
+    cJSON_AddNumberToObject(o, "wall_s", wall_now() - t_wp);
+    cJSON_AddStringToObject(o, "csv", csv);
+    if (plot) {
+      char png[4200];
+      snprintf(png, sizeof png, "%s/work-precision.png", dir);
+      cJSON_AddStringToObject(o, "plot", png);
+    }
+    const int rc_json = cli_json_print(o);
+    if (rc_json != CLI_EXIT_OK) return rc_json;
+  } else {
   printf("  (largest h: the largest step of the grid with I error <= 1e-2)\n  best composition: %s (h = %g)\n  data: %s\n",
          best_comp ? best_comp : "none", best_h_comp, csv);
+  }
   if (!plot) return CLI_EXIT_OK;
   char script[4096];
   snprintf(script, sizeof script, "%s/work-precision.gp", dir);
@@ -598,10 +659,8 @@ static int oscillatory_main(int argc, char **argv) {
               points, GM_RESONANCE_MAX_POINTS, GM_RESONANCE_MAX_POINTS);
     return CLI_EXIT_USAGE;
   }
-  if (json && strcmp(ex, "resonance") != 0 && strcmp(ex, "fpu") != 0 &&
-      strcmp(ex, "fpu-long") != 0 && strcmp(ex, "multiscale") != 0) {
-    cli_error(CMD, "--json: resonance, fpu, fpu-long and multiscale print JSON (one object a "
-              "run); '%s' prints a table", ex);
+  if (json && all) {
+    cli_error(CMD, "--json prints one object for one experiment: name it instead of 'all'");
     return CLI_EXIT_USAGE;
   }
   if (options[1].seen && !all && strcmp(ex, "resonance") != 0) {
@@ -618,9 +677,9 @@ static int oscillatory_main(int argc, char **argv) {
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "fpu-long") == 0))
     rc = experiment_fpu(dir, !no_plot, 1, json);
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "work-precision") == 0))
-    rc = experiment_work_precision(dir, !no_plot);
+    rc = experiment_work_precision(dir, !no_plot, json);
   if (rc == CLI_EXIT_OK && (all || strcmp(ex, "multiscale") == 0)) rc = experiment_multiscale(json);
-  if (rc == CLI_EXIT_OK && strcmp(ex, "step-scan") == 0) rc = experiment_step_scan(dir);
+  if (rc == CLI_EXIT_OK && strcmp(ex, "step-scan") == 0) rc = experiment_step_scan(dir, json);
   return rc;
 }
 
