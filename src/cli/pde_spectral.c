@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include "cli/cli.h"
 #include "cli/pde_spectral.h"
@@ -44,6 +45,12 @@ const char cli_pde_spectral_usage[] =
 static void print_help(void) {
   fputs("usage:", stdout);
   fputs(cli_pde_spectral_usage + strlen("      "), stdout);
+}
+
+static double wall_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static FILE *open_out(const char *cmd, const char *dir, const char *name) {
@@ -245,6 +252,7 @@ static int sch_compare(size_t n, double dt, double T, const char *dir, int no_pl
          "VI charge");
   }
   fprintf(f, "# t err_vi err_split_dt err_split_equal_cost vi_charge_drift vi_norm_drift\n");
+  const double t_wall = wall_now();
   double q0 = gm_schrodinger_charge(vi), n0 = gm_schrodinger_norm(vi), next = dt;
   size_t steps = (size_t)llround(T / dt), report = steps / 10 > 0 ? steps / 10 : 1;
   for (size_t k = 1; k <= steps; k++) {
@@ -301,6 +309,7 @@ static int sch_compare(size_t n, double dt, double T, const char *dir, int no_pl
     cJSON_AddNumberToObject(o, "equal_cost_ratio", (double)ratio);
     cJSON_AddItemToObject(o, "rows", rows);
     rows = NULL;
+    cJSON_AddNumberToObject(o, "wall_s", wall_now() - t_wall);
     rc = cli_json_print(o);
   }
   cJSON_Delete(rows);
