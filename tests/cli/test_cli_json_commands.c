@@ -62,6 +62,13 @@ Test(cli_json_commands, meshes) {
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) check_json_case(&cases[i]);
 }
 
+/* the demo's Kepler table (the field commands' text is not printed with --json) */
+Test(cli_json_commands, demo) {
+  static const json_case c = {"demo --out d --json",
+                              "kepler,steps,max_rel_energy_error,force_evals,wall_s,plots"};
+  check_json_case(&c);
+}
+
 /* list prints an array: each row an object with its name */
 Test(cli_json_commands, list_and_experiments_list) {
   static const char *const commands[] = {"list methods --json", "list problems --json",
