@@ -4,17 +4,20 @@
  * `maxwell run` with its field picture) and a structure-preserving result on a triangle mesh
  * (`maxwell mesh`: the leapfrog energy and Gauss's law kept to round-off while the plain energy
  * oscillates). DIR/README.md says in one line what each picture shows. */
+#include <cJSON.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
+#include <fcntl.h>
 
 #include "cli/cli.h"
 
 static const char usage[] =
-    "usage: geomint demo [--out DIR]\n\n"
+    "usage: geomint demo [--out DIR] [--json]\n\n"
     "Mechanics: integrate the Kepler problem with eccentricity 0.6 over 1000 orbits (t = 0 .. 2000 pi)\n"
     "at equal cost, one force evaluation per 0.005 time units: euler and verlet at dt = 0.005,\n"
     "rk4 (4 evaluations a step) at dt = 0.02, the 4th-order symplectic composition yoshida-4\n"
@@ -26,7 +29,8 @@ static const char usage[] =
     "then 'maxwell mesh --rect 12' (a PEC cavity on triangles, random E, leapfrog to t = 8),\n"
     "writing DIR/mesh-energy.csv and DIR/mesh-energy.png. DIR/README.md lists the pictures.\n\n"
     "options:\n"
-    "  --out DIR   output directory, created if missing (default demo-output)\n";
+    "  --out DIR   output directory, created if missing (default demo-output)\n"
+    "  --json      print one JSON object (the Kepler table, the files) instead of the text\n";
 
 /* Equal cost: the step of each method is DEMO_DT times its force evaluations per step (verlet
  * and yoshida-4 reuse the last force of a step: FSAL), so every method makes one evaluation per
@@ -110,7 +114,8 @@ static double first_time_above(const char *csv, size_t column, double level) {
   return found;
 }
 
-static int run_demo(const char *dir, const gm_model *model, demo_row *rows) {
+static int run_demo(const char *dir, const gm_model *model, demo_row *rows, int json,
+                    double orbits[2], char *png, size_t png_cap) {
   int status = CLI_EXIT_OK;
   cli_plot_series series[N_DEMO_METHODS];
   for (size_t i = 0; i < N_DEMO_METHODS && status == CLI_EXIT_OK; ++i) {
@@ -126,15 +131,15 @@ static int run_demo(const char *dir, const gm_model *model, demo_row *rows) {
                                   rows[i].result.energy_column};
   }
   if (status != CLI_EXIT_OK) return status;
-  print_table(gm_model_problem(model), rows, N_DEMO_METHODS);
+  if (!json) print_table(gm_model_problem(model), rows, N_DEMO_METHODS);
   /* where rk4's growing error passes the largest error of each symplectic method */
   const demo_row *rk4 = &rows[2];
-  double orbits[2] = {NAN, NAN};
   for (size_t j = 0; j < 2; ++j) {
     const demo_row *sym = &rows[j == 0 ? 1 : 3];
     double t = first_time_above(rk4->csv, rk4->result.energy_column,
                                 gm_monitor_max_rel_energy_error(sym->result.monitor));
     orbits[j] = t / two_pi;
+    if (json) continue;
     if (isnan(t))
       printf("\nrk4's energy error stays below the largest of %s over the %d orbits\n",
              sym->method->name, DEMO_ORBITS);
@@ -144,8 +149,8 @@ static int run_demo(const char *dir, const gm_model *model, demo_row *rows) {
              gm_monitor_max_rel_energy_error(sym->result.monitor), orbits[j],
              round(orbits[j]) == 1.0 ? "" : "s");
   }
-  char png[4096], title[256];
-  snprintf(png, sizeof png, "%s/kepler-energy-error.png", dir);
+  char title[256];
+  snprintf(png, png_cap, "%s/kepler-energy-error.png", dir);
   if (!isnan(orbits[0]))
     snprintf(title, sizeof title, "Kepler e = %.1f at equal cost (1 force per %g time units): "
              "rk4's energy error grows and passes verlet's bounded error after %.0f orbits",
@@ -154,7 +159,7 @@ static int run_demo(const char *dir, const gm_model *model, demo_row *rows) {
     snprintf(title, sizeof title, "Kepler e = %.1f at equal cost (1 force per %g time units): "
              "relative energy error", DEMO_ECCENTRICITY, DEMO_DT);
   status = cli_plot_energy_error("demo", png, title, series, N_DEMO_METHODS);
-  if (status != CLI_EXIT_OK) return status;
+  if (status != CLI_EXIT_OK || json) return status;
   printf("\nwrote");
   for (size_t i = 0; i < N_DEMO_METHODS; ++i) printf(" %s", rows[i].csv);
   printf(" %s\n", png);
@@ -199,6 +204,28 @@ static int run_command(char **argv, int argc) {
   return c->main(argc - 1, argv + 1);
 }
 
+/* With --json the field commands' own text is not the demo's output: stdout goes to /dev/null
+ * while they run (saved: the descriptor to restore, -1 when nothing was redirected). */
+static int quiet_begin(int json) {
+  if (!json) return -1;
+  fflush(stdout);
+  const int saved = dup(STDOUT_FILENO), null = open("/dev/null", O_WRONLY);
+  if (saved < 0 || null < 0 || dup2(null, STDOUT_FILENO) < 0) {
+    if (null >= 0) close(null);
+    if (saved >= 0) close(saved);
+    return -1;
+  }
+  close(null);
+  return saved;
+}
+
+static void quiet_end(int saved) {
+  if (saved < 0) return;
+  fflush(stdout);
+  dup2(saved, STDOUT_FILENO);
+  close(saved);
+}
+
 static int write_text(const char *path, const char *text) {
   FILE *f = fopen(path, "w");
   int bad = f == NULL;
@@ -223,7 +250,15 @@ static void mesh_energy_plot(FILE *g, const void *ctx) {
           csv, csv);
 }
 
-static int run_fields(const char *dir) {
+/* run a field command; with json its own text goes to /dev/null */
+static int run_quiet(char **argv, int argc, int json) {
+  const int saved = quiet_begin(json);
+  const int status = run_command(argv, argc);
+  quiet_end(saved);
+  return status;
+}
+
+static int run_fields(const char *dir, int json) {
   char scene[4096], yee_dir[4096], png[4096], csv[4096], mesh_png[4096], readme[4096];
   snprintf(scene, sizeof scene, "%s/yee-scene.json", dir);
   snprintf(yee_dir, sizeof yee_dir, "%s/yee", dir);
@@ -233,17 +268,19 @@ static int run_fields(const char *dir) {
   snprintf(readme, sizeof readme, "%s/README.md", dir);
   int status = write_text(scene, yee_scene);
   if (status != CLI_EXIT_OK) return status;
-  printf("\nFields 1: a Yee scene (2-D TM, 160 x 120 cells, CPML): a Gaussian pulse scatters off "
+  if (!json)
+    printf("\nFields 1: a Yee scene (2-D TM, 160 x 120 cells, CPML): a Gaussian pulse scatters off "
          "a dielectric disk (geomint maxwell run %s --out %s --plot %s)\n", scene, yee_dir, png);
   char *yee_argv[] = {"maxwell", "run", scene, "--out", yee_dir, "--plot", png};
   if ((status = make_directory(yee_dir)) != CLI_EXIT_OK ||
-      (status = run_command(yee_argv, 7)) != CLI_EXIT_OK)
+      (status = run_quiet(yee_argv, 7, json)) != CLI_EXIT_OK)
     return status;
-  printf("\nFields 2: a PEC cavity on 250 triangles, random E, leapfrog to t = 8: the leapfrog "
+  if (!json)
+    printf("\nFields 2: a PEC cavity on 250 triangles, random E, leapfrog to t = 8: the leapfrog "
          "energy and Gauss's law are kept to round-off (geomint maxwell mesh --rect 12 --energy "
          "%s)\n", csv);
   char *mesh_argv[] = {"maxwell", "mesh", "--rect", "12", "--energy", csv};
-  if ((status = run_command(mesh_argv, 6)) != CLI_EXIT_OK) return status;
+  if ((status = run_quiet(mesh_argv, 6, json)) != CLI_EXIT_OK) return status;
   status = cli_plot_custom("demo", mesh_png, "Maxwell on a triangle mesh (DEC leapfrog): the "
                            "leapfrog energy is conserved", mesh_energy_plot, csv);
   if (status != CLI_EXIT_OK) return status;
@@ -257,16 +294,56 @@ static int run_fields(const char *dir) {
                       "- `mesh-energy.png`: Maxwell on 250 triangles (DEC leapfrog, PEC, random "
                       "E): the plain energy oscillates, the leapfrog energy is conserved to "
                       "round-off.\n");
-  if (status == CLI_EXIT_OK) printf("\nwrote %s, %s, %s\n", png, mesh_png, readme);
+  if (status == CLI_EXIT_OK && !json) printf("\nwrote %s, %s, %s\n", png, mesh_png, readme);
   return status;
+}
+
+static int demo_json(const gm_problem *pb, const demo_row *rows, const double orbits[2],
+                     const char *dir, const char *png) {
+  const size_t l = cli_find_invariant(pb, "angular");
+  cJSON *o = cJSON_CreateObject();
+  cJSON_AddNumberToObject(o, "eccentricity", DEMO_ECCENTRICITY);
+  cJSON_AddNumberToObject(o, "orbits", DEMO_ORBITS);
+  cJSON *a = cJSON_AddArrayToObject(o, "kepler");
+  for (size_t i = 0; i < N_DEMO_METHODS; ++i) {
+    const cli_sim_result *r = &rows[i].result;
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "method", rows[i].method->name);
+    cJSON_AddNumberToObject(j, "dt", DEMO_DT * demo_methods[i].forces_per_step);
+    cJSON_AddNumberToObject(j, "steps", (double)r->stats.steps);
+    cJSON_AddItemToObject(j, "max_rel_energy_error",
+                          cli_json_number(gm_monitor_max_rel_energy_error(r->monitor)));
+    cJSON_AddItemToObject(j, "final_rel_energy_error",
+                          cli_json_number(gm_monitor_last_rel_energy_error(r->monitor)));
+    if (l != (size_t)-1)
+      cJSON_AddItemToObject(j, "angular_momentum_drift",
+                            cli_json_number(gm_monitor_max_invariant_drift(r->monitor, l)));
+    cJSON_AddNumberToObject(j, "force_evals", (double)r->stats.force_evals);
+    cJSON_AddNumberToObject(j, "wall_s", r->wall_s);
+    cJSON_AddStringToObject(j, "csv", rows[i].csv);
+    cJSON_AddItemToArray(a, j);
+  }
+  /* rk4's error passes verlet's / yoshida-4's largest after this many orbits (null: never) */
+  cJSON_AddItemToObject(o, "rk4_passes_verlet_after_orbits", cli_json_number(orbits[0]));
+  cJSON_AddItemToObject(o, "rk4_passes_yoshida4_after_orbits", cli_json_number(orbits[1]));
+  cJSON *files = cJSON_AddArrayToObject(o, "plots");
+  static const char *const names[] = {"yee-field.png", "mesh-energy.png", "README.md"};
+  cJSON_AddItemToArray(files, cJSON_CreateString(png));
+  for (size_t i = 0; i < 3; ++i) {
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+    cJSON_AddItemToArray(files, cJSON_CreateString(path));
+  }
+  return cli_json_print(o);
 }
 
 static int demo_main(int argc, char **argv) {
   const char *dir = "demo-output";
-  cli_option options[] = {{"--out", CLI_ARG_STRING, &dir, 0}};
+  int json = 0;
+  cli_option options[] = {{"--out", CLI_ARG_STRING, &dir, 0}, {"--json", CLI_ARG_FLAG, &json, 0}};
   const char *none[1];
   size_t n_none = 0;
-  int status = cli_parse("demo", argc, argv, options, 1, none, 0, &n_none);
+  int status = cli_parse("demo", argc, argv, options, 2, none, 0, &n_none);
   if (status == CLI_HELP) {
     fputs(usage, stdout);
     return CLI_EXIT_OK;
@@ -281,8 +358,12 @@ static int demo_main(int argc, char **argv) {
   if ((status = open_kepler(&model)) != CLI_EXIT_OK) return status;
   demo_row rows[N_DEMO_METHODS];
   memset(rows, 0, sizeof rows);
-  status = run_demo(dir, model, rows);
-  if (status == CLI_EXIT_OK) status = run_fields(dir);
+  double orbits[2] = {NAN, NAN};
+  char png[4096];
+  status = run_demo(dir, model, rows, json, orbits, png, sizeof png);
+  if (status == CLI_EXIT_OK) status = run_fields(dir, json);
+  if (status == CLI_EXIT_OK && json)
+    status = demo_json(gm_model_problem(model), rows, orbits, dir, png);
   for (size_t i = 0; i < N_DEMO_METHODS; ++i) cli_sim_result_clear(&rows[i].result);
   gm_model_free(model);
   return status;

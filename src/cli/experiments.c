@@ -1,6 +1,5 @@
 /* geomint experiments list|run: the table of the seeds' experiments (src/experiments/table.c)
- * and a run of one of them. A row whose computation lives in the library runs here; a row whose
- * command still holds it runs that command (as `geomint COMMAND ...`) with the output directory. */
+ * and a run of one of them: the row's library function, the same computation as its command. */
 #include <cJSON.h>
 #include <math.h>
 #include <stdio.h>
@@ -17,24 +16,12 @@ static const char usage[] =
     "usage: geomint experiments list [--json | --markdown]\n"
     "       geomint experiments run NAME [--out DIR] [--json]\n\n"
     "The experiments of the seeds that geomint reproduces, one row each: the seed and section,\n"
-    "what it shows, the seed's own number or figure, the command that runs it and a typical run\n"
-    "time (docs/experiments.md is made from this table).\n"
+    "what it shows, the seed's own number or figure and the command that runs it\n"
+    "(docs/experiments.md is made from this table).\n"
     "  list  print the table (--markdown: the docs' table)\n"
     "  run   run one at its defaults, writing into DIR (default experiments-output), and print\n"
-    "        its numbers (--json: one JSON object); the same as its command\n";
-
-/* How each row's command is told the output directory (%s), where it is not "--out DIR". */
-static const struct {
-  const char *name, *out;
-} out_forms[] = {{"mesh-cavity", "--plot %s/mesh-cavity.png"},
-                 {"tent-vi", "--out %s/tent-vi.csv"},
-                 {"multiscale", NULL}}; /* tables only */
-
-static const char *out_form(const char *name) {
-  for (size_t i = 0; i < sizeof out_forms / sizeof out_forms[0]; ++i)
-    if (strcmp(out_forms[i].name, name) == 0) return out_forms[i].out;
-  return "--out %s";
-}
+    "        its numbers (--json: one JSON object; wall_s is the run's measured time); the\n"
+    "        same computation as its command\n";
 
 static const char *name_at(const void *ctx, size_t i) {
   (void)ctx;
@@ -54,23 +41,21 @@ static int list_json(void) {
     char command[256];
     snprintf(command, sizeof command, "geomint %s", e->command);
     cJSON_AddStringToObject(o, "command", command);
-    cJSON_AddStringToObject(o, "run_time", e->run_time);
     cJSON_AddStringToObject(o, "doc", e->doc);
-    cJSON_AddBoolToObject(o, "in_library", e->run != NULL);
     cJSON_AddItemToArray(a, o);
   }
   return cli_json_print(a);
 }
 
 static int list_markdown(void) {
-  puts("| experiment | seed | what it shows | the seed's result | command | time | our numbers |\n"
-       "|---|---|---|---|---|---|---|");
+  puts("| experiment | seed | what it shows | the seed's result | command | our numbers |\n"
+       "|---|---|---|---|---|---|");
   for (size_t i = 0; i < gm_experiment_count(); ++i) {
     const gm_experiment_info *e = gm_experiment_at(i);
     const char *page = e->doc + 5; /* past "docs/": the links are relative to docs/ */
     const int page_len = (int)strcspn(page, "#");
-    printf("| `%s` | %s | %s | %s | `geomint %s` | %s | [%.*s](%s) |\n", e->name, e->seed,
-           e->shows, e->seed_result, e->command, e->run_time, page_len, page, page);
+    printf("| `%s` | %s | %s | %s | `geomint %s` | [%.*s](%s) |\n", e->name, e->seed,
+           e->shows, e->seed_result, e->command, page_len, page, page);
   }
   return fflush(stdout) == 0 ? CLI_EXIT_OK : CLI_EXIT_FAILURE;
 }
@@ -78,9 +63,8 @@ static int list_markdown(void) {
 static int list_text(void) {
   for (size_t i = 0; i < gm_experiment_count(); ++i) {
     const gm_experiment_info *e = gm_experiment_at(i);
-    printf("%-26s seed %s\n  %s\n  seed: %s\n  run:  geomint %s   (%s)%s\n", e->name, e->seed,
-           e->shows, e->seed_result, e->command, e->run_time,
-           e->run ? "" : "   [computation still in the command]");
+    printf("%-26s seed %s\n  %s\n  seed: %s\n  run:  geomint %s\n", e->name, e->seed,
+           e->shows, e->seed_result, e->command);
   }
   return CLI_EXIT_OK;
 }
@@ -101,34 +85,6 @@ static int print_result(const gm_experiment_info *e, const gm_experiment_result 
   printf("  seed: %s\n", e->seed_result);
   for (size_t i = 0; i < r->n_files; ++i) printf("  wrote %s\n", r->files[i]);
   return CLI_EXIT_OK;
-}
-
-/* Run the row's command: its words, the output option, --json. */
-static int run_command(const gm_experiment_info *e, const char *dir, int json) {
-  char words[256], out[4200];
-  snprintf(words, sizeof words, "%s", e->command);
-  char *argv[16];
-  int argc = 0;
-  for (char *w = strtok(words, " "); w != NULL && argc < 12; w = strtok(NULL, " "))
-    argv[argc++] = w;
-  const char *form = out_form(e->name);
-  char *option = NULL;
-  if (form != NULL) {
-    snprintf(out, sizeof out, form, dir);
-    option = out;
-    char *space = strchr(out, ' ');
-    *space = '\0';
-    argv[argc++] = option;
-    argv[argc++] = space + 1;
-  }
-  if (json) argv[argc++] = "--json";
-  argv[argc] = NULL;
-  const cli_command *c = cli_find_command(argv[0]);
-  if (c == NULL) {
-    cli_error(CMD, "%s: the command '%s' is not known (a bug in the table)", e->name, argv[0]);
-    return CLI_EXIT_FAILURE;
-  }
-  return c->main(argc - 1, argv + 1);
 }
 
 static int run_main(int argc, char **argv) {
@@ -154,7 +110,6 @@ static int run_main(int argc, char **argv) {
     return CLI_EXIT_USAGE;
   }
   if ((rc = mx_make_dir(CMD " run", dir)) != CLI_EXIT_OK) return rc;
-  if (e->run == NULL) return run_command(e, dir, json);
   gm_experiment_result r = {0};
   gm_error err = {{0}};
   gm_status st = e->run(dir, &r, &err);

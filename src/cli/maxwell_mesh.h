@@ -37,7 +37,8 @@ gm_status mm_advance_progress(gm_mesh_maxwell *s, double t);
 #include <stdint.h>
 #include "geomint/mesh.h"
 int cli_maxwell_mesh_e5(const gm_mesh *mesh, const char *out_dir, double t_end, uint64_t seed,
-                        double f_max, double fraction, double sample_dt, double t_compare);
+                        double f_max, double fraction, double sample_dt, double t_compare,
+                        int json);
 
 /* geomint maxwell mesh-cavity (maxwell_mesh_cavity.c): the PEC cavity convergence table. */
 int cli_maxwell_mesh_cavity(int argc, char **argv);

@@ -11,6 +11,7 @@
  * A degenerate resonance split by the mesh has two errors: its nearest peak, and the farthest
  * of the peaks nearest to it (the split's spread and shift; the sphere's (2l+1)-fold
  * multiplets need it, see docs/maxwell-mesh.md). */
+#include <cJSON.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,21 +20,18 @@
 #include "cli/cli.h"
 #include "cli/maxwell.h"
 #include "cli/maxwell_mesh.h"
+#include "geomint/experiments.h"
 #include "geomint/geomint.h"
 
 #define MC "maxwell mesh-cavity"
-#define MC_MAX_LEVELS 6
-#define MC_MAX_MODES 128
-#define MC_MAX_UNIQ 16
-
-/* the longest record --t-end accepts */
-#define MC_MAX_T_END 1e4
+#define MC_MAX_LEVELS GM_MESH_CAVITY_MAX_LEVELS
+#define MC_MAX_T_END GM_MESH_CAVITY_MAX_T_END /* the longest record --t-end accepts */
 
 static const char usage[] =
     "usage: geomint maxwell mesh-cavity [--shape box|cylinder|sphere] [--levels K] [--n0 N]\n"
     "                                   [--modes N] [--diagonal] [--t-end T] [--seed S]\n"
     "                                   [--mesh-dir DIR]\n"
-    "                                   [--plot FILE.png]\n\n"
+    "                                   [--plot FILE.png] [--json]\n\n"
     "PEC cavity resonances on tetrahedral meshes at K resolutions (issue 11): Whitney-star\n"
     "leapfrog, current pulses on random edges, E probed at random points, harminv; the\n"
     "first 10 analytic resonances against the peaks, the rate of convergence with the mesh\n"
@@ -53,7 +51,8 @@ static const char usage[] =
     "  --t-end T         record length, at most 1e4 (default 150)\n"
     "  --seed S          sources and probes (default 11)\n"
     "  --plot FILE.png   |relative error| against h, log-log, one line per resonance (gnuplot;\n"
-    "                    the nearest peak, or the farthest where a multiplet has > 2 members)\n\n"
+    "                    the nearest peak, or the farthest where a multiplet has > 2 members)\n"
+    "  --json            print one JSON object instead of the tables\n\n"
     "Exit status: 0 success (the table is printed; spurious peaks are reported, not fatal),\n"
     "1 a failed run, 2 bad input.\n";
 
@@ -64,77 +63,76 @@ static int show_progress(void *ctx, double done, double total) {
   return 0;
 }
 
-static int make_level(const char *shape, const char *dir, size_t n0, size_t k, gm_mesh **mesh,
-                      double *h) {
-  gm_error err = {{0}};
-  if (strcmp(shape, "box") == 0) {
-    const double lo[3] = {0, 0, 0}, hi[3] = {1.0, 0.8, 0.6};
-    const size_t n = n0 * k;
-    *h = 1.0 / (double)n;
-    if (gm_mesh_bcc(lo, hi, n, (size_t)lround(0.8 * (double)n), (size_t)lround(0.6 * (double)n),
-                    1, mesh, &err) != GM_OK) {
-      cli_error(MC, "%s", err.message);
-      return CLI_EXIT_USAGE;
-    }
-    return CLI_EXIT_OK;
-  }
-  char path[1024];
-  snprintf(path, sizeof path, "%s/cavity_%s_%zu.msh", dir, shape, k);
-  if (gm_mesh_read(path, mesh, &err) != GM_OK) {
-    cli_error(MC, "%s", err.message);
-    return CLI_EXIT_USAGE;
-  }
-  /* h: the mean edge length */
-  gm_complex *cx = NULL;
-  if (gm_mesh_complex(*mesh, &cx, &err) != GM_OK) {
-    cli_error(MC, "%s", err.message);
-    return CLI_EXIT_USAGE;
-  }
-  const size_t ne = gm_complex_count(cx, 1);
-  const size_t *ev = gm_complex_simplices(cx, 1);
-  const double *X = gm_complex_coordinates(cx);
-  double s = 0.0;
-  for (size_t e = 0; e < ne; ++e) {
-    double r2 = 0.0;
-    for (int i = 0; i < 3; ++i) {
-      const double d = X[3 * ev[2 * e] + (size_t)i] - X[3 * ev[2 * e + 1] + (size_t)i];
-      r2 += d * d;
-    }
-    s += sqrt(r2);
-  }
-  *h = s / (double)ne;
-  gm_complex_free(cx);
-  return CLI_EXIT_OK;
-}
-
 /* The error table: one row per distinct resonance, the rate a least-squares slope of
  * log |error| against log h over the levels where it was found. */
-static void print_table(const char *what, size_t levels, const double *hs, size_t nu,
-                        const double *uniq, const int *mult, double errs[][MC_MAX_LEVELS]) {
+static void print_table(const char *what, const gm_mesh_cavity_result *r, int farthest) {
+  const double(*errs)[GM_MESH_CAVITY_MAX_LEVELS] = farthest ? r->farthest : r->nearest;
+  const double *rates = farthest ? r->rate_farthest : r->rate_nearest;
+  const size_t levels = r->levels;
   printf("\nrelative error of the %s:\n| f analytic | mult. |", what);
-  for (size_t l = 0; l < levels; ++l) printf(" rel. error h = %.4f |", hs[l]);
+  for (size_t l = 0; l < levels; ++l) printf(" rel. error h = %.4f |", r->level[l].h);
   printf(" rate |\n|---|---|");
   for (size_t l = 0; l <= levels; ++l) printf("---|");
   printf("\n");
-  for (size_t j = 0; j < nu; ++j) {
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    size_t m = 0;
-    printf("| %.5f | %d |", uniq[j], mult[j]);
+  for (size_t j = 0; j < r->n_uniq; ++j) {
+    printf("| %.5f | %d |", r->uniq[j], r->mult[j]);
     for (size_t l = 0; l < levels; ++l) {
       if (isnan(errs[j][l])) { printf(" — |"); continue; }
       printf(" %+.2e |", errs[j][l]);
-      const double x = log(hs[l]), y = log(fabs(errs[j][l]) + 1e-300);
-      sx += x, sy += y, sxx += x * x, sxy += x * y, ++m;
     }
-    if (m >= 2) printf(" %.2f |\n", (m * sxy - sx * sy) / (m * sxx - sx * sx));
+    if (!isnan(rates[j])) printf(" %.2f |\n", rates[j]);
     else printf(" — |\n");
   }
+}
+
+static cJSON *json_errors(const gm_mesh_cavity_result *r, int farthest) {
+  const double(*errs)[GM_MESH_CAVITY_MAX_LEVELS] = farthest ? r->farthest : r->nearest;
+  const double *rates = farthest ? r->rate_farthest : r->rate_nearest;
+  cJSON *a = cJSON_CreateArray();
+  for (size_t j = 0; j < r->n_uniq; ++j) {
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "analytic", r->uniq[j]);
+    cJSON_AddNumberToObject(o, "multiplicity", r->mult[j]);
+    cJSON_AddItemToObject(o, "rel_errors", cli_json_numbers(errs[j], r->levels));
+    cJSON_AddItemToObject(o, "rate", cli_json_number(rates[j]));
+    cJSON_AddItemToArray(a, o);
+  }
+  return a;
+}
+
+static int print_json(const char *shape, const gm_mesh_cavity_result *r, const char *plot) {
+  cJSON *o = cJSON_CreateObject();
+  cJSON_AddStringToObject(o, "shape", shape);
+  cJSON_AddNumberToObject(o, "t_end", r->run.t_end);
+  cJSON_AddNumberToObject(o, "f_min", r->run.f_min);
+  cJSON_AddNumberToObject(o, "f_max", r->run.f_max);
+  cJSON *levels = cJSON_AddArrayToObject(o, "levels");
+  for (size_t l = 0; l < r->levels; ++l) {
+    const gm_mesh_cavity_level *L = &r->level[l];
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddNumberToObject(j, "h", L->h);
+    cJSON_AddNumberToObject(j, "tetrahedra", (double)L->n_tetrahedra);
+    cJSON_AddNumberToObject(j, "edges", (double)L->n_edges);
+    cJSON_AddNumberToObject(j, "dt", L->dt);
+    cJSON_AddItemToObject(j, "peaks", cli_json_numbers(L->peaks, L->n_peaks));
+    cJSON_AddNumberToObject(j, "analytic_in_band", (double)L->in_band);
+    cJSON_AddNumberToObject(j, "spurious", (double)L->spurious);
+    cJSON_AddItemToArray(levels, j);
+  }
+  cJSON_AddItemToObject(o, "nearest", json_errors(r, 0));
+  cJSON_AddItemToObject(o, "farthest", json_errors(r, 1));
+  cJSON_AddItemToObject(o, "max_rel_error", cli_json_numbers(r->band_max, r->levels));
+  cJSON_AddItemToObject(o, "rate", cli_json_number(r->band_rate));
+  cJSON_AddNumberToObject(o, "spurious", (double)r->spurious);
+  cJSON_AddNumberToObject(o, "wall_s", r->wall_s);
+  if (plot) cJSON_AddStringToObject(o, "plot", plot);
+  return cli_json_print(o);
 }
 
 int cli_maxwell_mesh_cavity(int argc, char **argv) {
   const char *shape = "box", *dir = "examples", *plot = NULL;
   size_t levels = 3, n0 = 5, seed = 11, n_first = 10;
-  int diagonal = 0;
+  int diagonal = 0, json = 0;
   double t_end = 150.0;
   cli_option options[] = {{"--shape", CLI_ARG_STRING, &shape, 0},
                           {"--levels", CLI_ARG_COUNT, &levels, 0},
@@ -144,7 +142,8 @@ int cli_maxwell_mesh_cavity(int argc, char **argv) {
                           {"--t-end", CLI_ARG_DOUBLE, &t_end, 0},
                           {"--seed", CLI_ARG_COUNT, &seed, 0},
                           {"--mesh-dir", CLI_ARG_STRING, &dir, 0},
-                          {"--plot", CLI_ARG_STRING, &plot, 0}};
+                          {"--plot", CLI_ARG_STRING, &plot, 0},
+                          {"--json", CLI_ARG_FLAG, &json, 0}};
   const char *pos[1];
   size_t n_pos = 0;
   int status = cli_parse(MC, argc, argv, options, sizeof options / sizeof options[0], pos, 0,
@@ -177,145 +176,71 @@ int cli_maxwell_mesh_cavity(int argc, char **argv) {
     return CLI_EXIT_USAGE;
   }
   if (plot && cli_plot_check_output(MC, plot) != CLI_EXIT_OK) return CLI_EXIT_USAGE;
+  gm_mesh_cavity_config c = gm_mesh_cavity_defaults();
+  c.shape = shape;
+  c.mesh_dir = dir;
+  c.levels = levels;
+  c.n0 = n0;
+  c.n_first = n_first;
+  c.diagonal = diagonal;
+  c.t_end = t_end;
+  c.seed = seed;
+  mx_progress progress; /* a line on a terminal only; steps known once dt is */
+  mx_progress_start(&progress, 0);
+  c.progress = show_progress;
+  c.progress_ctx = &progress;
+  gm_mesh_cavity_result r;
   gm_error err = {{0}};
-  double ana[MC_MAX_MODES];
-  size_t na = 0;
-  gm_status st = strcmp(shape, "box") == 0
-                     ? gm_cavity_box_resonances((const double[3]){1.0, 0.8, 0.6}, 2.0,
-                                                MC_MAX_MODES, ana, &na, &err)
-                 : strcmp(shape, "cylinder") == 0
-                     ? gm_cavity_cylinder_resonances(0.5, 0.6, 2.0, MC_MAX_MODES, ana, &na, &err)
-                     : gm_cavity_sphere_resonances(0.5, 2.7, MC_MAX_MODES, ana, &na, &err);
-  if (st != GM_OK || na < 11) {
-    cli_error(MC, "analytic resonances: %s", st != GM_OK ? err.message : "fewer than 11");
-    return CLI_EXIT_FAILURE;
+  gm_status st = gm_experiment_mesh_cavity(&c, &r, &err);
+  mx_progress_end(&progress);
+  if (st != GM_OK) {
+    cli_error(MC, "%s", err.message);
+    return st == GM_EINVAL ? CLI_EXIT_USAGE : CLI_EXIT_FAILURE;
   }
-  /* the band: up to halfway between the n_first-th resonance (with multiplicity) and the next
-   * distinct one; the multiplet of the n_first-th is taken whole */
-  size_t next = n_first;
-  while (next < na && ana[next] <= ana[n_first - 1] * (1 + 1e-12)) ++next;
-  if (next >= na) {
-    cli_error(MC, "--modes %zu: the analytic list ends there", n_first);
-    return CLI_EXIT_USAGE;
-  }
-  const double f_hi = 0.5 * (ana[n_first - 1] + ana[next]);
-  double uniq[MC_MAX_UNIQ];
-  int mult[MC_MAX_UNIQ];
-  size_t nu = 0;
-  for (size_t j = 0; j < next; ++j) {
-    if (nu > 0 && ana[j] <= uniq[nu - 1] * (1 + 1e-12)) { ++mult[nu - 1]; continue; }
-    if (nu == MC_MAX_UNIQ) {
-      cli_error(MC, "--modes %zu: more than %d distinct resonances", n_first, MC_MAX_UNIQ);
-      return CLI_EXIT_USAGE;
-    }
-    uniq[nu] = ana[j];
-    mult[nu++] = 1;
-  }
-  gm_mesh_cavity_run run = gm_mesh_cavity_run_defaults();
-  run.t_end = t_end;
-  run.seed = seed;
-  run.f_min = 0.5 * ana[0];
-  run.f_max = f_hi;
-  run.band = 0.2;
-  run.n_sources = 12;
-  run.n_probes = 8;
+  const gm_mesh_cavity_run run = r.run;
+  const size_t nu = r.n_uniq;
+  if (!json) {
   printf("PEC %s cavity, %s-star leapfrog (0.9 of the CFL limit), %zu sources, %zu probe "
          "points x 3 components, t = %g,\nharminv in bands of %.2g over [%.3f, %.3f] (error < "
          "%.0e, amplitude >= %.0e of the largest), leapfrog dispersion undone\n",
          shape, diagonal ? "diagonal" : "Whitney", run.n_sources, run.n_probes, t_end, run.band,
          run.f_min, run.f_max, run.max_error, run.min_amplitude);
-  /* per distinct resonance and level: the error of the nearest peak, and of the farthest of the
-   * peaks nearest to it (a multiplet split by the mesh: its spread) */
-  double errs[MC_MAX_UNIQ][MC_MAX_LEVELS], worst[MC_MAX_UNIQ][MC_MAX_LEVELS], hs[MC_MAX_LEVELS];
-  size_t total_spurious = 0;
   for (size_t l = 0; l < levels; ++l) {
-    gm_mesh *mesh = NULL;
-    gm_complex *cx = NULL;
-    gm_geometry *g = NULL;
-    if ((status = make_level(shape, dir, n0, l + 1, &mesh, &hs[l])) != CLI_EXIT_OK) return status;
-    if (gm_mesh_complex(mesh, &cx, &err) != GM_OK ||
-        gm_geometry_create(cx, NULL, &g, &err) != GM_OK) {
-      cli_error(MC, "%s", err.message);
-      gm_complex_free(cx), gm_mesh_free(mesh);
-      return CLI_EXIT_USAGE;
-    }
-    gm_mesh_maxwell_options o = gm_mesh_maxwell_defaults();
-    if (diagonal) o.allow_negative_stars = 1; /* the diagonal star, as --diagonal asks */
-    else o.star = GM_MESH_STAR_WHITNEY;
-    gm_harminv_mode modes[MC_MAX_MODES];
-    size_t nm = 0;
-    double dt = 0.0;
-    mx_progress progress; /* a line on a terminal only; steps known once dt is */
-    mx_progress_start(&progress, 0);
-    run.progress = show_progress;
-    run.progress_ctx = &progress;
-    st = gm_mesh_maxwell_cavity_modes(g, &o, &run, MC_MAX_MODES, modes, &nm, &dt, &err);
-    mx_progress_end(&progress);
-    const size_t ntet = gm_complex_count(cx, 3), nedge = gm_complex_count(cx, 1);
-    gm_geometry_free(g), gm_complex_free(cx), gm_mesh_free(mesh);
-    if (st != GM_OK) {
-      cli_error(MC, "level %zu: %s%s", l + 1, err.message,
-                st != GM_EDOMAIN ? ""
-                : diagonal ? "; the run blew up: the diagonal star has non-positive entries on "
-                             "this mesh (--diagonal accepts them), which no step cures: drop "
-                             "--diagonal for the Whitney star"
-                           : "; the run blew up");
-      return CLI_EXIT_FAILURE;
-    }
-    for (size_t j = 0; j < nu; ++j) errs[j][l] = worst[j][l] = NAN;
-    size_t spurious = 0, in_band = 0;
-    for (size_t j = 0; j < na; ++j) in_band += ana[j] >= run.f_min && ana[j] <= run.f_max;
+    const gm_mesh_cavity_level *L = &r.level[l];
     printf("level %zu: h = %.4f, %zu tetrahedra, %zu edges, dt = %.4g; %zu peaks (analytic "
-           "modes in the band, with multiplicity: %zu):", l + 1, hs[l], ntet, nedge, dt, nm,
-           in_band);
-    for (size_t i = 0; i < nm; ++i) {
-      const double fs = gm_leapfrog_space_frequency(modes[i].frequency, dt);
-      size_t best = 0;
-      for (size_t j = 1; j < na; ++j)
-        if (fabs(ana[j] - fs) < fabs(ana[best] - fs)) best = j;
-      const double rel = (fs - ana[best]) / ana[best];
-      printf(" %.5f", fs);
-      if (fabs(rel) > 0.05) { ++spurious; printf("(SPURIOUS)"); }
-      for (size_t j = 0; j < nu; ++j)
-        if (ana[best] == uniq[j]) {
-          if (!(fabs(errs[j][l]) <= fabs(rel))) errs[j][l] = rel;
-          if (!(fabs(worst[j][l]) >= fabs(rel))) worst[j][l] = rel;
-        }
+           "modes in the band, with multiplicity: %zu):", l + 1, L->h, L->n_tetrahedra,
+           L->n_edges, L->dt, L->n_peaks, L->in_band);
+    for (size_t i = 0; i < L->n_peaks; ++i) {
+      printf(" %.5f", L->peaks[i]);
+      if (L->spurious_peak[i]) printf("(SPURIOUS)");
     }
-    printf("; spurious: %zu\n", spurious);
-    total_spurious += spurious;
+    printf("; spurious: %zu\n", L->spurious);
+  }
   }
   int split = 0, wide = 0; /* wide: a multiplet of more than two (the sphere's) */
-  for (size_t j = 0; j < nu; ++j) split |= mult[j] > 1, wide |= mult[j] > 2;
-  print_table("nearest peak", levels, hs, nu, uniq, mult, errs);
-  if (split) print_table("farthest of the peaks nearest to the resonance (a split multiplet's "
-                         "spread)", levels, hs, nu, uniq, mult, worst);
-  /* the largest error over the band (farthest peaks, resonances found at every level): one
-   * number per level that does not depend on which members of a multiplet harminv resolves */
-  double bmax[MC_MAX_LEVELS], sx = 0, sy = 0, sxx = 0, sxy = 0;
-  printf("\nlargest relative error in the band:");
-  for (size_t l = 0; l < levels; ++l) {
-    bmax[l] = 0.0;
-    for (size_t j = 0; j < nu; ++j)
-      if (!isnan(worst[j][l])) bmax[l] = fmax(bmax[l], fabs(worst[j][l]));
-    printf(" %.2e", bmax[l]);
-    const double x = log(hs[l]), y = log(bmax[l] + 1e-300);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  for (size_t j = 0; j < nu; ++j) split |= r.mult[j] > 1, wide |= r.mult[j] > 2;
+  if (!json) {
+    print_table("nearest peak", &r, 0);
+    if (split) print_table("farthest of the peaks nearest to the resonance (a split multiplet's "
+                           "spread)", &r, 1);
+    printf("\nlargest relative error in the band:");
+    for (size_t l = 0; l < levels; ++l) printf(" %.2e", r.band_max[l]);
+    if (levels >= 2) printf(", rate %.2f", r.band_rate);
+    printf("\n");
+    printf("\nspurious peaks below the 10th resonance (all levels): %zu\n", r.spurious);
   }
-  if (levels >= 2) printf(", rate %.2f", (levels * sxy - sx * sy) / (levels * sxx - sx * sx));
-  printf("\n");
-  printf("\nspurious peaks below the 10th resonance (all levels): %zu\n", total_spurious);
   if (plot) {
-    double ys[MC_MAX_UNIQ][MC_MAX_LEVELS];
-    char titles[MC_MAX_UNIQ][48];
-    cli_xy_series series[MC_MAX_UNIQ];
+    double ys[GM_MESH_CAVITY_MAX_UNIQ][GM_MESH_CAVITY_MAX_LEVELS], hs[GM_MESH_CAVITY_MAX_LEVELS];
+    char titles[GM_MESH_CAVITY_MAX_UNIQ][48];
+    cli_xy_series series[GM_MESH_CAVITY_MAX_UNIQ];
+    for (size_t l = 0; l < levels; ++l) hs[l] = r.level[l].h;
     for (size_t j = 0; j < nu; ++j) {
       for (size_t l = 0; l < levels; ++l) /* NaN: left out */
-        ys[j][l] = fabs(wide ? worst[j][l] : errs[j][l]);
-      snprintf(titles[j], sizeof titles[j], "f = %.4f", uniq[j]);
-      if (mult[j] > 1)
+        ys[j][l] = fabs(wide ? r.farthest[j][l] : r.nearest[j][l]);
+      snprintf(titles[j], sizeof titles[j], "f = %.4f", r.uniq[j]);
+      if (r.mult[j] > 1)
         snprintf(titles[j] + strlen(titles[j]), sizeof titles[j] - strlen(titles[j]), " (x%d)",
-                 mult[j]);
+                 r.mult[j]);
       series[j] = (cli_xy_series){titles[j], levels, hs, ys[j]};
     }
     char title[96];
@@ -323,7 +248,7 @@ int cli_maxwell_mesh_cavity(int argc, char **argv) {
              wide ? "farthest-peak" : "resonance", diagonal ? "diagonal-star" : "Whitney");
     const int ps = cli_plot_loglog(MC, plot, title, "h", "|relative error|", series, nu);
     if (ps != CLI_EXIT_OK) return ps;
-    printf("wrote %s\n", plot);
+    if (!json) printf("wrote %s\n", plot);
   }
-  return CLI_EXIT_OK;
+  return json ? print_json(shape, &r, plot) : CLI_EXIT_OK;
 }

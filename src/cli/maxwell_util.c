@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "cli/maxwell.h"
+#include "geomint/experiments.h"
 
 double mx_now(void) {
   struct timespec ts;
@@ -40,26 +41,11 @@ void mx_progress_end(mx_progress *p) {
 
 size_t mx_resonances(const double *signal, size_t n, double dt, double f_min, double f_max,
                      gm_harminv_mode *modes, size_t cap, char *msg, size_t msg_cap) {
-  gm_harminv_mode all[256];
-  size_t n_all = 0;
   gm_error err = {{0}};
-  msg[0] = '\0';
-  if (gm_harminv(n, signal, NULL, dt, f_min, f_max, 0, 256, all, &n_all, &err) != GM_OK) {
-    snprintf(msg, msg_cap, "%s", err.message);
-    return 0;
-  }
-  /* harminv also returns weak, badly resolved components of noise: keep a mode when its
-   * error estimate is small, it is not overdamped (|Q| > 1; a lossless mode's decay is ±1e-13,
-   * so Q's sign means nothing there), and its amplitude is not negligible against the
-   * strongest one. */
-  double a_max = 0;
-  for (size_t k = 0; k < n_all; ++k)
-    if (isfinite(all[k].amplitude)) a_max = fmax(a_max, all[k].amplitude);
   size_t kept = 0;
-  for (size_t k = 0; k < n_all && kept < cap; ++k)
-    if (all[k].error < 1e-4 && fabs(all[k].q) > 1 && isfinite(all[k].frequency) &&
-        all[k].amplitude > 1e-6 * a_max)
-      modes[kept++] = all[k];
+  msg[0] = '\0';
+  if (gm_experiment_resonances(signal, n, dt, f_min, f_max, modes, cap, &kept, &err) != GM_OK)
+    snprintf(msg, msg_cap, "%s", err.message);
   return kept;
 }
 

@@ -12,7 +12,7 @@
 
 static const char usage[] =
     "usage: geomint mesh info FILE [--json]\n"
-    "       geomint mesh poisson FILE [--out FILE.vtu] [--solver cholmod|mg] [--refine L]\n"
+    "       geomint mesh poisson FILE [--out FILE.vtu] [--solver cholmod|mg] [--refine L] [--json]\n"
     "       geomint mesh poisson --levels L [--dim 2|3] [--n0 N] [--json]\n"
     "       geomint mesh refine FILE --levels L [--out FILE.msh] [--max-memory SIZE] [--json]\n"
     "       geomint mesh transfer A B [--json]\n\n"
@@ -34,7 +34,7 @@ static const char usage[] =
     "           the total of a top form, the error on a constant and on a linear 0-form;\n"
     "           meshes of different domains are refused (exit 2) with their areas\n\n"
     "options:\n"
-    "  --json       (info, poisson --levels) print one JSON object\n"
+    "  --json       print one JSON object\n"
     "  --out FILE   (poisson) write the mesh with u_h, u and the error to a .vtu file;\n"
     "               (refine) write the finest mesh as .msh\n"
     "  --solver S   (poisson FILE) cholmod (default) or mg: CG preconditioned by a geometric\n"
@@ -194,7 +194,8 @@ static int mesh_info(const char *path, int json) {
   return CLI_EXIT_OK;
 }
 
-static int mesh_poisson(const char *path, const char *out, const gm_poisson_options *opt) {
+static int mesh_poisson(const char *path, const char *out, const gm_poisson_options *opt,
+                        int json) {
   gm_mesh *m = NULL;
   gm_error err = {{0}};
   int status = read_mesh(path, &m);
@@ -210,6 +211,7 @@ static int mesh_poisson(const char *path, const char *out, const gm_poisson_opti
                ? CLI_EXIT_USAGE
                : CLI_EXIT_FAILURE;
   }
+  if (!json) {
   printf("poisson on %s: -Δu = f, u = Π sin(π(x_i − lo_i)/L_i + 1/4), Dirichlet boundary\n", path);
   if (opt->levels > 0) printf("  %-24s %zu (%zu cells)\n", "refinements", opt->levels, rep.n_cells);
   printf("  %-24s %zu (%zu unknowns)\n", "vertices", rep.n_vertices, rep.n_unknowns);
@@ -228,6 +230,7 @@ static int mesh_poisson(const char *path, const char *out, const gm_poisson_opti
   printf("  %-24s %.6e\n", "max error", rep.error_max);
   printf("  %-24s %.6e\n", "L2 error", rep.error_l2);
   printf("  %-24s %.6e\n", "relative max error", rep.error_max / rep.solution_max);
+  }
   status = CLI_EXIT_OK;
   if (out != NULL) {
     gm_complex *cx = NULL;
@@ -259,7 +262,7 @@ static int mesh_poisson(const char *path, const char *out, const gm_poisson_opti
     if (st != GM_OK) {
       cli_error("mesh", "%s", err.message);
       status = CLI_EXIT_FAILURE;
-    } else {
+    } else if (!json) {
       printf("  %-24s %s\n", "wrote", out);
     }
     free(ex), free(e);
@@ -267,6 +270,30 @@ static int mesh_poisson(const char *path, const char *out, const gm_poisson_opti
   }
   free(u);
   gm_mesh_free(m);
+  if (json && status == CLI_EXIT_OK) {
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "mesh", path);
+    cJSON_AddNumberToObject(o, "refinements", (double)opt->levels);
+    cJSON_AddNumberToObject(o, "cells", (double)rep.n_cells);
+    cJSON_AddNumberToObject(o, "vertices", (double)rep.n_vertices);
+    cJSON_AddNumberToObject(o, "unknowns", (double)rep.n_unknowns);
+    cJSON_AddStringToObject(o, "solver", opt->solver == GM_POISSON_MULTIGRID ? "mg" : "cholmod");
+    if (opt->solver == GM_POISSON_MULTIGRID) {
+      cJSON_AddNumberToObject(o, "cg_iterations", (double)rep.iterations);
+      cJSON_AddItemToObject(o, "contraction", cli_json_number(rep.contraction));
+    }
+    cJSON_AddItemToObject(o, "relative_residual", cli_json_number(rep.relative_residual));
+    cJSON_AddNumberToObject(o, "setup_s", rep.setup_s);
+    cJSON_AddNumberToObject(o, "factor_s", rep.factor_s);
+    cJSON_AddNumberToObject(o, "solve_s", rep.solve_s);
+    cJSON_AddNumberToObject(o, "wall_s", rep.setup_s + rep.factor_s + rep.solve_s);
+    cJSON_AddItemToObject(o, "h", cli_json_number(rep.h));
+    cJSON_AddItemToObject(o, "error_max", cli_json_number(rep.error_max));
+    cJSON_AddItemToObject(o, "error_l2", cli_json_number(rep.error_l2));
+    cJSON_AddItemToObject(o, "max_rel_error", cli_json_number(rep.error_max / rep.solution_max));
+    if (out != NULL) cJSON_AddStringToObject(o, "vtu", out);
+    status = cli_json_print(o);
+  }
   return status;
 }
 
@@ -444,10 +471,6 @@ static int mesh_main(int argc, char **argv) {
     return mesh_info(pos[1], json);
   }
   if (strcmp(pos[0], "poisson") == 0) {
-    if (json) {
-      cli_error("mesh", "--json belongs to 'mesh info'");
-      return CLI_EXIT_USAGE;
-    }
     gm_poisson_options opt = gm_poisson_defaults();
     if (solver != NULL) {
       int sv = cli_mesh_solver(solver);
@@ -473,7 +496,7 @@ static int mesh_main(int argc, char **argv) {
     opt.levels = refine;
     opt.max_bytes = max_memory_bytes;
     opt.measure_contraction = opt.solver == GM_POISSON_MULTIGRID;
-    return mesh_poisson(pos[1], out, &opt);
+    return mesh_poisson(pos[1], out, &opt, json);
   }
   cli_error("mesh", "unknown subcommand '%s': use info, poisson, refine or transfer", pos[0]);
   return CLI_EXIT_USAGE;

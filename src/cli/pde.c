@@ -1,6 +1,7 @@
 /* geomint pde: multisymplectic PDE integrators (src/pde). `run` (pde_run.c) integrates one
  * equation from its exact solution; `b10` is seed 004's stability experiment
  * (Figs. 11–13): LF/EC/MS at Δt = Δx and EC/MS at Δt = 2Δx, with one figure. */
+#include <cJSON.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -10,11 +11,12 @@
 
 #include "cli/cli.h"
 #include "cli/pde_spectral.h"
+#include "geomint/experiments.h"
 
 static const char usage[] =
     "usage: geomint pde run sine-gordon|kdv|nls [--scheme NAME] [--n N] [--dt DT] [--T T]\n"
     "                       [--dirichlet] [--out FILE.csv] [--vtk FILE.vti] ... (pde run --help)\n"
-    "       geomint pde b10 [--out DIR] [--no-plot]\n"
+    "       geomint pde b10 [--out DIR] [--no-plot] [--json]\n"
     "       geomint pde nls-long [--periods P] [--n N] [--dt DT] [--every K] [--out DIR]\n"
     "                            [--no-plot] [--only preissmann|box-sdirk2] [--plot-only]\n"
     "\n"
@@ -32,111 +34,9 @@ static const char usage[] =
     "     steps) and DIR/nls-long.png. --only runs one scheme; --plot-only draws the figure\n"
     "     from the .dat files already in DIR (two --only runs in parallel, then the plot).\n";
 
-#define L_HALF 20.0
+/* ---- B10 (gm_experiment_b10) ------------------------------------------------------------ */
 
-static double *breather_data(size_t n, double omega) {
-  double h = 2.0 * L_HALF / (double)n, k = sqrt(1.0 - omega * omega);
-  double *s = calloc(3 * n, sizeof *s);
-  if (s == NULL) return NULL;
-  for (size_t i = 0; i < n; i++) s[3 * i + 1] = 4.0 * k / cosh(k * (-L_HALF + (double)i * h));
-  return s;
-}
-
-static int make_solver(const char *cmd, const char *scheme_name, size_t n, double dt,
-                       double omega, gm_pde **out) {
-  const gm_pde_scheme *scheme = NULL;
-  if (gm_pde_scheme_find(scheme_name, &scheme) != GM_OK) {
-    cli_error(cmd, "unknown scheme '%s': preissmann, euler-box, lf, ec or ms", scheme_name);
-    return CLI_EXIT_USAGE;
-  }
-  gm_pde_equation eq = gm_pde_sine_gordon();
-  gm_pde_grid g = {n, 2.0 * L_HALF / (double)n, -L_HALF, {0}};
-  gm_pde_options o = gm_pde_options_defaults();
-  o.dt = dt;
-  double *s0 = breather_data(n, omega);
-  if (s0 == NULL) {
-    cli_error(cmd, "out of memory");
-    return CLI_EXIT_FAILURE;
-  }
-  gm_error err = {{0}};
-  gm_status st = gm_pde_create(&g, &eq, scheme, &o, s0, out, &err);
-  free(s0);
-  if (st != GM_OK) {
-    cli_error(cmd, "%s", err.message);
-    return st == GM_ENOMEM ? CLI_EXIT_FAILURE : CLI_EXIT_USAGE;
-  }
-  return CLI_EXIT_OK;
-}
-
-/* ---- B10 --------------------------------------------------------------------------------- */
-typedef struct b10_run {
-  const char *scheme;
-  double ratio, T; /* Δt/Δx, end time */
-} b10_run;
-
-static const b10_run b10_runs[] = {{"lf", 1.0, 500.0}, {"ec", 1.0, 500.0}, {"ms", 1.0, 500.0},
-                                   {"ec", 2.0, 100.0}, {"ms", 2.0, 100.0}};
-#define N_B10 (sizeof b10_runs / sizeof b10_runs[0])
-
-static double max_abs_u(const gm_pde *p) {
-  const double *s = gm_pde_state(p);
-  double m = 0.0;
-  for (size_t i = 0; i < gm_pde_n(p); i++) m = fmax(m, fabs(s[3 * i]));
-  return m;
-}
-
-static int b10_one(const b10_run *r, const char *dir, char *summary, size_t cap) {
-  size_t n = 200;
-  double h = 2.0 * L_HALF / (double)n, dt = r->ratio * h;
-  gm_pde *p = NULL;
-  int rc = make_solver("pde b10", r->scheme, n, dt, 0.5, &p);
-  if (rc != CLI_EXIT_OK) return rc;
-  char path[4200];
-  snprintf(path, sizeof path, "%s/b10-%s-%g.dat", dir, r->scheme, r->ratio);
-  FILE *f = fopen(path, "w");
-  if (f == NULL) {
-    cli_error("pde b10", "cannot write '%s': %s", path, strerror(errno));
-    gm_pde_free(p);
-    return CLI_EXIT_FAILURE;
-  }
-  fprintf(f, "# t max|u| relative-energy-change running-max|u| (%s, dt/dx = %g)\n", r->scheme,
-          r->ratio);
-  double e0 = gm_pde_energy(p), emax = 0.0, run_max = 0.0;
-  size_t steps = (size_t)llround(r->T / dt), every = r->ratio > 1.0 ? 1 : 5;
-  const char *outcome = NULL;
-  gm_error err = {{0}};
-  size_t k;
-  for (k = 0; k < steps; k++) {
-    gm_status st = gm_pde_advance(p, 1, &err);
-    if (st != GM_OK) {
-      outcome = "failed";
-      break;
-    }
-    double m = max_abs_u(p), de = fabs(gm_pde_energy(p) - e0) / fabs(e0);
-    run_max = fmax(run_max, m);
-    if ((k + 1) % every == 0 || m > 100.0)
-      fprintf(f, "%g %.6e %.6e %.6e\n", gm_pde_time(p), m, de, run_max);
-    if (m > 100.0) {
-      outcome = "unbounded";
-      break;
-    }
-    emax = fmax(emax, de);
-  }
-  fclose(f);
-  if (outcome == NULL)
-    snprintf(summary, cap, "%-3s dt/dx = %g: bounded to t = %g (max|u| %.3f, max relative "
-             "energy change %.2e)", r->scheme, r->ratio, gm_pde_time(p), max_abs_u(p), emax);
-  else if (strcmp(outcome, "failed") == 0)
-    snprintf(summary, cap, "%-3s dt/dx = %g: fails at step %zu (t = %g): %.300s", r->scheme,
-             r->ratio, k + 1, (double)(k + 1) * dt, err.message);
-  else
-    snprintf(summary, cap, "%-3s dt/dx = %g: |u| > 100 at step %zu (t = %g)", r->scheme,
-             r->ratio, k + 1, gm_pde_time(p));
-  gm_pde_free(p);
-  return CLI_EXIT_OK;
-}
-
-static int b10_plot(const char *dir) {
+static int b10_plot(const char *dir, int say) {
   char script[4200], cmd[8600];
   snprintf(script, sizeof script, "%s/b10.gp", dir);
   FILE *g = fopen(script, "w");
@@ -166,17 +66,47 @@ static int b10_plot(const char *dir) {
     cli_error("pde b10", "gnuplot failed on %s", script);
     return CLI_EXIT_FAILURE;
   }
-  printf("  figure: %s/b10.png\n", dir);
+  if (say) printf("  figure: %s/b10.png\n", dir);
   return CLI_EXIT_OK;
+}
+
+static int b10_json(const gm_b10_result *r, const char *dir, int plotted) {
+  cJSON *o = cJSON_CreateObject();
+  cJSON_AddNumberToObject(o, "n", (double)r->n);
+  cJSON_AddNumberToObject(o, "dx", r->h);
+  cJSON *runs = cJSON_AddArrayToObject(o, "runs");
+  static const char *const outcome[] = {"bounded", "unbounded", "failed"};
+  for (size_t k = 0; k < r->n_runs; ++k) {
+    const gm_b10_run *b = &r->runs[k];
+    cJSON *j = cJSON_CreateObject();
+    cJSON_AddStringToObject(j, "scheme", b->scheme);
+    cJSON_AddNumberToObject(j, "dt_over_dx", b->ratio);
+    cJSON_AddStringToObject(j, "outcome", outcome[b->outcome]);
+    cJSON_AddNumberToObject(j, "steps", (double)b->step);
+    cJSON_AddNumberToObject(j, "t", b->t);
+    cJSON_AddItemToObject(j, "max_abs_u", cli_json_number(b->max_abs_u));
+    cJSON_AddItemToObject(j, "max_rel_energy_error", cli_json_number(b->max_rel_energy_error));
+    if (b->outcome == GM_B10_FAILED) cJSON_AddStringToObject(j, "why", b->why);
+    cJSON_AddItemToArray(runs, j);
+  }
+  cJSON_AddNumberToObject(o, "wall_s", r->wall_s);
+  cJSON_AddStringToObject(o, "dir", dir);
+  if (plotted) {
+    char png[4200];
+    snprintf(png, sizeof png, "%s/b10.png", dir);
+    cJSON_AddStringToObject(o, "plot", png);
+  }
+  return cli_json_print(o);
 }
 
 static int pde_b10(int argc, char **argv) {
   const char *dir = "pde-output";
-  int no_plot = 0;
+  int no_plot = 0, json = 0;
   size_t n_pos = 0;
   cli_option options[] = {{"--out", CLI_ARG_STRING, &dir, 0},
-                          {"--no-plot", CLI_ARG_FLAG, &no_plot, 0}};
-  int rc = cli_parse("pde b10", argc, argv, options, 2, NULL, 0, &n_pos);
+                          {"--no-plot", CLI_ARG_FLAG, &no_plot, 0},
+                          {"--json", CLI_ARG_FLAG, &json, 0}};
+  int rc = cli_parse("pde b10", argc, argv, options, 3, NULL, 0, &n_pos);
   if (rc == CLI_HELP) {
     fputs(usage, stdout);
     return CLI_EXIT_OK;
@@ -194,13 +124,30 @@ static int pde_b10(int argc, char **argv) {
     cli_error("pde b10", "cannot create the directory '%s': %s", dir, strerror(errno));
     return CLI_EXIT_FAILURE;
   }
-  printf("B10 (seed 004 Figs. 11-13): sine-Gordon breather w = 0.5 on [-20, 20), N = 200\n");
-  for (size_t k = 0; k < N_B10; k++) {
-    char summary[512];
-    if ((rc = b10_one(&b10_runs[k], dir, summary, sizeof summary)) != CLI_EXIT_OK) return rc;
-    printf("  %s\n", summary);
+  gm_b10_result r;
+  gm_error err = {{0}};
+  if (gm_experiment_b10(dir, &r, &err) != GM_OK) {
+    cli_error("pde b10", "%s", err.message);
+    return CLI_EXIT_FAILURE;
   }
-  return no_plot ? CLI_EXIT_OK : b10_plot(dir);
+  if (json) {
+    rc = no_plot ? CLI_EXIT_OK : b10_plot(dir, 0);
+    return rc != CLI_EXIT_OK ? rc : b10_json(&r, dir, !no_plot);
+  }
+  printf("B10 (seed 004 Figs. 11-13): sine-Gordon breather w = 0.5 on [-20, 20), N = 200\n");
+  for (size_t k = 0; k < r.n_runs; k++) {
+    const gm_b10_run *b = &r.runs[k];
+    if (b->outcome == GM_B10_BOUNDED)
+      printf("  %-3s dt/dx = %g: bounded to t = %g (max|u| %.3f, max relative energy change "
+             "%.2e)\n", b->scheme, b->ratio, b->t, b->max_abs_u, b->max_rel_energy_error);
+    else if (b->outcome == GM_B10_FAILED)
+      printf("  %-3s dt/dx = %g: fails at step %zu (t = %g): %.300s\n", b->scheme, b->ratio,
+             b->step, b->t, b->why);
+    else
+      printf("  %-3s dt/dx = %g: |u| > 100 at step %zu (t = %g)\n", b->scheme, b->ratio, b->step,
+             b->t);
+  }
+  return no_plot ? CLI_EXIT_OK : b10_plot(dir, 1);
 }
 
 int cli_pde_nls_long(int argc, char **argv); /* pde_nls.c */

@@ -50,14 +50,6 @@ static int make_directory(const char *dir) {
   return 1;
 }
 
-static FILE *open_out(const char *dir, const char *name) {
-  char path[1024];
-  snprintf(path, sizeof path, "%s/%s", dir, name);
-  FILE *f = fopen(path, "w");
-  if (f == NULL) cli_error("reduction", "cannot write %s: %s", path, strerror(errno));
-  return f;
-}
-
 /* run a gnuplot script (text) that writes png; returns an exit status */
 static int plot(const char *dir, const char *png, const char *script) {
   char path[1024], cmd[1200];
@@ -281,20 +273,10 @@ static int routh_main(int argc, char **argv) {
       return CLI_EXIT_USAGE;
     }
   }
-  if (json && phases) {
-    cli_error("reduction", "--json: j2-satellite and double-spherical-pendulum print JSON (their "
-              "computation is in the library); 'phases' prints a table");
-    return CLI_EXIT_USAGE;
-  }
   if (phases) {
-    rc = cli_reduction_phases();
-    if (rc != CLI_EXIT_OK || !options[0].seen) return rc; /* files only with --out */
-    if (make_directory(dir)) return CLI_EXIT_FAILURE;
-    FILE *f = open_out(dir, "phases-convergence.csv");
-    if (f == NULL) return CLI_EXIT_FAILURE;
-    rc = cli_reduction_phases_convergence(f);
-    if (fclose(f) != 0 && rc == CLI_EXIT_OK) rc = CLI_EXIT_FAILURE;
-    if (rc != CLI_EXIT_OK || no_plot) return rc;
+    if (options[0].seen && make_directory(dir)) return CLI_EXIT_FAILURE;
+    rc = cli_reduction_phases(options[0].seen ? dir : NULL, json); /* files only with --out */
+    if (rc != CLI_EXIT_OK || !options[0].seen || no_plot) return rc;
     return plot(dir, "phases-convergence.png",
                 "set logscale xy\nset format y '10^{%L}'\nset xlabel 'points per loop / steps per period'\n"
                 "set ylabel 'phase error'\nset key outside right\nset grid\n"

@@ -2,10 +2,8 @@
 #ifndef GM_CLI_REDUCTION_PHASES_H
 #define GM_CLI_REDUCTION_PHASES_H
 
-#include <stdio.h>
-
-int cli_reduction_phases(void);
-/* The convergence data behind the table (CSV, errors vs points per loop / steps per period). */
-int cli_reduction_phases_convergence(FILE *f);
+/* The table (or with json one JSON object); with dir non-NULL, the convergence data
+ * dir/phases-convergence.csv (errors vs points per loop / steps per period) too. */
+int cli_reduction_phases(const char *dir, int json);
 
 #endif

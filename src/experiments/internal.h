@@ -44,4 +44,20 @@ gm_status gm_experiment_run_mimetic_pendulum(const char *dir, gm_experiment_resu
 gm_status gm_experiment_run_mimetic_kepler(const char *dir, gm_experiment_result *result,
                                            gm_error *err);
 
+gm_status gm_experiment_run_tent_vi(const char *dir, gm_experiment_result *result, gm_error *err);
+gm_status gm_experiment_run_b10(const char *dir, gm_experiment_result *result, gm_error *err);
+gm_status gm_experiment_run_nls_long(const char *dir, gm_experiment_result *result,
+                                     gm_error *err);
+gm_status gm_experiment_run_spectral_star(const char *dir, gm_experiment_result *result,
+                                          gm_error *err);
+gm_status gm_experiment_run_schrodinger_eigen(const char *dir, gm_experiment_result *result,
+                                              gm_error *err);
+gm_status gm_experiment_run_multiscale(const char *dir, gm_experiment_result *result,
+                                       gm_error *err);
+gm_status gm_experiment_run_phases(const char *dir, gm_experiment_result *result, gm_error *err);
+gm_status gm_experiment_run_cavity(const char *dir, gm_experiment_result *result, gm_error *err);
+gm_status gm_experiment_run_mesh_cavity(const char *dir, gm_experiment_result *result,
+                                        gm_error *err);
+gm_status gm_experiment_run_e5(const char *dir, gm_experiment_result *result, gm_error *err);
+
 #endif
