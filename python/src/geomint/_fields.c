@@ -369,6 +369,21 @@ static int equation_by_name(const char *name, gm_pde_equation *eq) {
   return 0;
 }
 
+static const char *pde_scheme_name_at(const void *ctx, size_t i) {
+  (void)ctx;
+  const gm_pde_scheme *s = gm_pde_scheme_at(i);
+  return s ? s->name : NULL;
+}
+
+/* An unknown scheme name, with the library's suggestions. */
+static PyObject *raise_unknown_scheme(const char *name) {
+  char list[256];
+  if (gm_suggest(name, pde_scheme_name_at, NULL, list, sizeof list) > 0)
+    return raise_status(GM_ENOTFOUND, "unknown PDE scheme '%s'; did you mean: %s?", name, list);
+  return raise_status(GM_ENOTFOUND, "unknown PDE scheme '%s' (geomint.pde.schemes() lists them)",
+                      name);
+}
+
 static PyObject *pde_scheme_row(const gm_pde_scheme *s) {
   return Py_BuildValue("{s:s,s:i,s:i,s:O,s:O,s:O,s:O,s:s,s:s}", "name", s->name, "order_t",
                        s->order_t, "order_x", s->order_x, "multisymplectic",
@@ -398,9 +413,7 @@ static PyObject *core_pde_point_x(PyObject *mod, PyObject *args) {
   double h, x0;
   if (!PyArg_ParseTuple(args, "sndd", &name, &n, &h, &x0)) return NULL;
   const gm_pde_scheme *s;
-  if (gm_pde_scheme_find(name, &s) != GM_OK)
-    return raise_status(GM_ENOTFOUND, "unknown PDE scheme '%s' (geomint.pde.schemes() lists "
-                        "them)", name);
+  if (gm_pde_scheme_find(name, &s) != GM_OK) return raise_unknown_scheme(name);
   if (n < 1) {
     PyErr_SetString(PyExc_ValueError, "n must be >= 1");
     return NULL;
@@ -435,8 +448,7 @@ static int Pde_init(PdeObject *self, PyObject *args, PyObject *kw) {
     return -1;
   }
   if (gm_pde_scheme_find(scheme_name, &self->scheme) != GM_OK) {
-    raise_status(GM_ENOTFOUND, "unknown PDE scheme '%s' (geomint.pde.schemes() lists them)",
-                 scheme_name);
+    raise_unknown_scheme(scheme_name);
     return -1;
   }
   if (n < 1) {
