@@ -96,24 +96,30 @@ class MeshMaxwell:
 
     @property
     def E(self):
+        """E on the edges: a read-only view of the solver's array (valid until the next advance)."""
         return self._m.E
 
     @property
     def B(self):
+        """B on the faces at the current time (a copy; the AVI synchronises it)."""
         return self._m.B
 
     @property
     def dt(self):
+        """The leapfrog's time step."""
         return self._m.dt
 
     @property
     def time(self):
+        """The time reached."""
         return self._m.time
 
     @property
     def step(self):
+        """Steps (AVI: face events) done."""
         return self._m.step
 
     @property
     def cfl_limit(self):
+        """The leapfrog's CFL limit 2/sqrt(λ_max) of this mesh and these materials."""
         return self._m.cfl_limit

@@ -64,16 +64,20 @@ class Pde:
 
     @property
     def state(self):
+        """The state (n, d): a read-only view of the solver's array, valid until the next advance."""
         return self._p.state
 
     @property
     def time(self):
+        """The time reached."""
         return self._p.time
 
     @property
     def steps(self):
+        """Steps done."""
         return self._p.steps
 
     @property
     def stats(self):
+        """Newton iterations, factorizations, gradient evaluations of the run so far."""
         return self._p.stats
