@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The Python package against C and against SciPy, ratios measured in one run.
 
-    bench/python_overhead.py [--quick] [--json FILE]
+    bench/python_overhead.py [--quick] [--json FILE] [--only tolerance|energy] [--figure PNG]
 
 Needs the geomint package (python/, see docs/python.md) and, for the binding comparison,
 Debian's python3-cffi and a C compiler. Measures:
@@ -14,7 +14,10 @@ Debian's python3-cffi and a C compiler. Measures:
      the same trampoline written with cffi (API mode, extern "Python") for comparison;
   3. time to a final position error <= 1e-8 after 200 periods of Kepler, e = 0.6, with the
      same Python force: geomint's splitting/composition rows against scipy.integrate.solve_ivp
-     (RK45, DOP853, Radau).
+     (RK45, DOP853, Radau);
+  4. the energy error after 10^4 periods of the same Kepler problem at equal CPU time: DOP853
+     at --energy-rtol, then geomint's kahan-li-8 with the steps that fill the same time.
+--only tolerance|energy runs part 3 or 4 alone; --figure-from A.json B.json merges results.
 Timings are CPU times of the thread (time.thread_time; the C side CLOCK_THREAD_CPUTIME_ID),
 best of a few repeats; prints a table and, last, one JSON line.
 """
@@ -159,28 +162,42 @@ def kepler_error(q, q0):
 
 
 def geomint_to_tolerance(method, periods, tol):
-    """Largest step (halving from 2pi/16 by 2^(1/4)) reaching tol on the built-in Kepler (C
-    force); then the timed run with the Python force at that step."""
+    """The fewest steps per period reaching tol on the built-in Kepler (C force): steps per
+    period grow by 2^(1/4) from 16 to the first that reaches it, then every integer from the
+    last that did not is tried (the error need not be monotone in the step: the first that
+    reaches tol counts); then the timed run with the Python force at that step."""
     t_end = 2 * math.pi * periods
     ref = geomint.problem("kepler")
     q0 = ref.y0[:2]
-    steps_per_period = 16
-    while steps_per_period < 2 ** 16:
-        dt = 2 * math.pi / steps_per_period
+
+    def reaches(spp):
         it = geomint.Integrator(ref, method, every=10 ** 9)
-        it.integrate(t_end, dt)
-        if kepler_error(it.state[:2], q0) <= tol:
-            break
+        it.integrate(t_end, 2 * math.pi / spp)
+        return kepler_error(it.state[:2], q0) <= tol
+
+    below, steps_per_period = 8, 16
+    while steps_per_period < 2 ** 16 and not reaches(steps_per_period):
+        below = steps_per_period
         steps_per_period = int(math.ceil(steps_per_period * 2 ** 0.25))
+    for spp in range(below + 1, steps_per_period):
+        if reaches(spp):
+            steps_per_period = spp
+            break
     pb = kepler_problem()
     holder = [None]
 
     def run():
         it = geomint.Integrator(pb, method, every=10 ** 9)
-        it.integrate(t_end, dt)
+        it.integrate(t_end, 2 * math.pi / steps_per_period)
         holder[0] = it
-    seconds = best(run, 2)
-    it = holder[0]
+    # the Python force rounds differently from the C force: near the threshold its run may
+    # miss tol where the C run reached it; then the next integer counts
+    while True:
+        seconds = best(run, 2)
+        it = holder[0]
+        if kepler_error(it.state[:2], q0) <= tol or steps_per_period >= 2 ** 16:
+            break
+        steps_per_period += 1
     return {"solver": f"geomint {method}", "seconds": seconds,
             "error": kepler_error(it.state[:2], q0), "force_evals": it.stats["force_evals"],
             "steps_per_period": steps_per_period}
@@ -207,8 +224,13 @@ def scipy_to_tolerance(method, periods, tol, budget_s):
         spent += seconds
         err = kepler_error(sol.y[:2, -1], q0) if sol.success else math.inf
         if err <= tol:
+            evals = counter[0]
+            # best of two, as the geomint rows
+            t = time.thread_time()
+            solve_ivp(rhs, (0.0, t_end), y0, method=method, rtol=rtol, atol=rtol * 1e-2)
+            seconds = min(seconds, time.thread_time() - t)
             return {"solver": f"scipy {method}", "seconds": seconds, "error": err,
-                    "force_evals": counter[0], "rtol": rtol}
+                    "force_evals": evals, "rtol": rtol}
         if spent > budget_s:
             return {"solver": f"scipy {method}", "seconds": None, "error": err,
                     "force_evals": counter[0], "rtol": rtol,
@@ -217,13 +239,83 @@ def scipy_to_tolerance(method, periods, tol, budget_s):
             "note": "not reached down to rtol 1e-14"}
 
 
+# ---- 4. energy error after many periods at equal CPU time ------------------------------------
+
+def energy_at_equal_time(periods, rtol, method="kahan-li-8"):
+    """DOP853 at rtol over `periods` Kepler periods (e = 0.6, the Python force), its CPU time
+    T; then geomint's `method` with the steps per period that fill T at the per-evaluation
+    cost measured on a short run (rounded down, so geomint gets at most SciPy's time). Energy
+    errors |H/H0 - 1| at 101 equally spaced times (SciPy: its dense output at t_eval)."""
+    from scipy.integrate import solve_ivp
+    pb = kepler_problem()
+    y0 = pb.y0
+    t_end = 2 * math.pi * periods
+    h0 = pb.energy(y0)
+
+    def rhs(t, y):
+        return np.concatenate([y[2:], -kepler_force(y[:2])])
+    times = np.linspace(0.0, t_end, 101)
+    c = time.thread_time()
+    sol = solve_ivp(rhs, (0.0, t_end), y0, method="DOP853", rtol=rtol, atol=rtol * 1e-2,
+                    t_eval=times)
+    scipy_s = time.thread_time() - c
+    scipy_err = np.array([abs(pb.energy(y) / h0 - 1) for y in sol.y.T])
+    # geomint's cost per step from a short run, the steps per period that fill scipy_s, then
+    # corrected by a run over 2% of the periods at that step; 0.8 of it as a margin (noise)
+    it = geomint.Integrator(pb, method, every=10 ** 9)
+    c = time.thread_time()
+    it.run(2000, 0.01)
+    spp = int(scipy_s / ((time.thread_time() - c) / 2000 * periods))
+    if spp >= 4:
+        part = max(1, periods // 50)
+        it = geomint.Integrator(pb, method, every=10 ** 9)
+        c = time.thread_time()
+        it.run(spp * part, 2 * math.pi / spp)
+        spp = int(0.8 * spp * scipy_s / ((time.thread_time() - c) * periods / part))
+    out = {"periods": periods, "scipy_rtol": rtol, "scipy_s": scipy_s,
+           "scipy_evals": int(sol.nfev), "scipy_final": float(scipy_err[-1]),
+           "scipy_max": float(scipy_err.max()), "method": method, "steps_per_period": spp,
+           "scipy_times": times.tolist(), "scipy_errors": scipy_err.tolist()}
+    if spp < 4:
+        out["note"] = f"SciPy's {scipy_s:.2f} s buys geomint fewer than 4 steps per period"
+        return out
+    it = geomint.Integrator(pb, method, every=spp * periods // 100)
+    c = time.thread_time()
+    r = it.run(spp * periods, 2 * math.pi / spp)
+    geomint_s = time.thread_time() - c
+    err = r.rel_energy_error()
+    out.update({"geomint_s": geomint_s, "geomint_evals": it.stats["force_evals"],
+                "geomint_final": float(err[-1]), "geomint_max": float(err.max()),
+                "geomint_times": r.t.tolist(), "geomint_errors": err.tolist()})
+    out["ratio_max"] = out["scipy_max"] / out["geomint_max"]
+    out["ratio_final"] = out["scipy_final"] / max(out["geomint_final"], 1e-300)
+    return out
+
+
 def figure(result, path):
-    """Bars of the CPU time to 1e-8 of every solver (from a result of this script)."""
+    """Bars of the CPU time to 1e-8 of every solver and, when measured, the energy error at
+    equal CPU time against the periods (from a result of this script)."""
     import geomint.plot  # noqa: F401  (selects the Agg backend)
     import matplotlib.pyplot as plt
     k = result["kepler_to_1e-8"]
     rows = k["rows"]
-    fig, ax = plt.subplots(figsize=(6.4, 3.4))
+    e = result.get("energy_equal_time")
+    if e and "geomint_errors" in e:
+        fig, (ax, ax2) = plt.subplots(1, 2, figsize=(12, 3.6),
+                                      gridspec_kw={"width_ratios": [1.2, 1]})
+        period = 2 * math.pi
+        ax2.semilogy(np.array(e["geomint_times"][1:]) / period,
+                     np.maximum(e["geomint_errors"][1:], 1e-17),
+                     label=f"geomint {e['method']} ({e['geomint_s']:.1f} s)")
+        ax2.semilogy(np.array(e["scipy_times"][1:]) / period,
+                     np.maximum(e["scipy_errors"][1:], 1e-17),
+                     label=f"scipy DOP853 rtol {e['scipy_rtol']:g} ({e['scipy_s']:.1f} s)")
+        ax2.set_xlabel("periods")
+        ax2.set_ylabel("|H/H0 - 1|")
+        ax2.set_title("energy error at equal CPU time")
+        ax2.legend(fontsize=8)
+    else:
+        fig, ax = plt.subplots(figsize=(6.4, 3.4))
     names = [r["solver"] for r in rows]
     secs = [r["seconds"] if r["seconds"] is not None else 0.0 for r in rows]
     colors = ["tab:blue" if n.startswith("geomint") else "tab:orange" for n in names]
@@ -249,13 +341,49 @@ def main():
     ap.add_argument("--budget", type=float,
                     help="CPU seconds a SciPy method may spend on its tolerances (default 150)")
     ap.add_argument("--figure", help="draw the solve_ivp comparison into this PNG")
-    ap.add_argument("--figure-from", help="only draw --figure from a JSON result of this script")
+    ap.add_argument("--figure-from", nargs="+",
+                    help="only draw --figure from JSON results of this script (merged)")
+    ap.add_argument("--energy-periods", type=int,
+                    help="periods of part 4, energy at equal time (default 10^4, quick 100)")
+    ap.add_argument("--energy-rtol", type=float, default=1e-8,
+                    help="DOP853's rtol in part 4 (default 1e-8)")
+    ap.add_argument("--only", choices=["tolerance", "energy"],
+                    help="run only part 3 (time to 1e-8) or part 4 (energy at equal time)")
     args = ap.parse_args()
     if args.figure_from:
-        with open(args.figure_from) as f:
-            figure(json.load(f), args.figure)
+        merged = {}
+        for name in args.figure_from:
+            with open(name) as f:
+                merged.update(json.load(f))
+        figure(merged, args.figure)
         return
     quick = args.quick
+    out = {}
+    if args.only is None:
+        out.update(binding_overhead(quick))
+    if args.only in (None, "tolerance"):
+        out.update(to_tolerance(args, quick))
+    if args.only in (None, "energy"):
+        periods = args.energy_periods or (100 if quick else 10 ** 4)
+        e = out["energy_equal_time"] = energy_at_equal_time(periods, args.energy_rtol)
+        if "geomint_s" in e:
+            print(f"energy after {periods} periods at equal CPU time: DOP853 rtol "
+                  f"{e['scipy_rtol']:g} {e['scipy_s']:.2f} s, max |dH/H| {e['scipy_max']:.2e}; "
+                  f"geomint {e['method']} ({e['steps_per_period']} steps per period) "
+                  f"{e['geomint_s']:.2f} s, max {e['geomint_max']:.2e}; ratio "
+                  f"{e['ratio_max']:.3g}")
+        else:
+            print(e["note"])
+    if args.figure and "kepler_to_1e-8" in out:
+        figure(out, args.figure)
+    line = json.dumps(out)
+    if args.json:
+        with open(args.json, "w") as f:
+            f.write(line + "\n")
+    print("PYTHON_BENCH " + line)
+
+
+def binding_overhead(quick):
     out = {}
     out["builtin"] = [builtin_overhead("kepler", "verlet", 1e-3, 10 ** 5 if quick else 10 ** 6, 5),
                       builtin_overhead("outer-solar-system", "verlet", 10.0,
@@ -270,6 +398,11 @@ def main():
           f"{pf['geomint_per_eval_ns']:.0f} ns (ratio {pf['ratio']:.3f}); cffi trampoline "
           + (f"{pf['cffi_per_eval_ns']:.0f} ns (ratio {pf['cffi_ratio']:.3f})"
              if pf["cffi_per_eval_ns"] else "not measured (no cffi)"))
+    return out
+
+
+def to_tolerance(args, quick):
+    out = {}
     periods, tol = args.periods or (20 if quick else 200), 1e-8
     budget = args.budget or (30 if quick else 150)
     rows = [geomint_to_tolerance(m, periods, tol)
@@ -286,13 +419,7 @@ def main():
     if g and s:
         out["best_ratio"] = min(g) / min(s)
         print(f"geomint best / SciPy best: {out['best_ratio']:.3f}")
-    if args.figure:
-        figure(out, args.figure)
-    line = json.dumps(out)
-    if args.json:
-        with open(args.json, "w") as f:
-            f.write(line + "\n")
-    print("PYTHON_BENCH " + line)
+    return out
 
 
 if __name__ == "__main__":

@@ -66,7 +66,8 @@ libs = pkg_libs("lapacke", "libcjson", "harminv", "fftw3", "hdf5") + \
 
 core = Extension(
     "geomint._core",
-    sources=["src/geomint/_core.c"],
+    sources=["src/geomint/_core.c", "src/geomint/_fields.c"],
+    depends=["src/geomint/_core.h"],
     include_dirs=[os.path.join(SOURCE, "include"), numpy.get_include()],
     extra_compile_args=["-std=c11", "-O2", "-ffp-contract=off", "-Wall", "-Wextra",
                         "-Wno-missing-field-initializers", "-Wno-cast-function-type"],

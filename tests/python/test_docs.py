@@ -31,7 +31,10 @@ def test_docs_snippets_run(tmp_path, monkeypatch, capsys):
     out = capsys.readouterr().out
     assert "did you mean: yoshida-6" in out
     assert "raised by the right-hand side f(t, y) at t = 1.125" in out
-    for png in ("energy.png", "orbit.png", "ez.png"):
+    assert "True 1.4" in out                      # the heavy top from callables, bitwise
+    assert "[0.70706996 1.11775851]" in out       # harminv of the Yee cavity
+    assert "[0.70678361]" in out                  # harminv of mesh Maxwell's TE11
+    for png in ("energy.png", "orbit.png", "ez.png", "wp.png"):
         assert (tmp_path / png).stat().st_size > 10000
 
 

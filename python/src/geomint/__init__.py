@@ -7,8 +7,10 @@
 """
 from ._core import Error
 from .ode import (Problem, Integrator, Result, methods, method, problems, problem, run, order,
-                  separable, hamiltonian, lagrangian, first_order)
+                  separable, hamiltonian, lagrangian, first_order, poisson, rigid_body, nbody,
+                  work_precision)
 
 __all__ = ["Error", "Problem", "Integrator", "Result", "methods", "method", "problems",
-           "problem", "run", "order", "separable", "hamiltonian", "lagrangian", "first_order"]
-from . import dec, yee  # noqa: E402  (geomint.plot is imported on demand: matplotlib)
+           "problem", "run", "order", "separable", "hamiltonian", "lagrangian", "first_order",
+           "poisson", "rigid_body", "nbody", "work_precision"]
+from . import dec, yee, fields, pde, progress  # noqa: E402  (geomint.plot: on demand, matplotlib)

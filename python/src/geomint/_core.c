@@ -9,21 +9,17 @@
  * keeps its problem alive, a geometry its complex). Status codes become geomint.Error carrying
  * the library's message; Python exceptions raised in callbacks are kept and re-raised after the
  * library returns GM_ECALLBACK. */
-#define PY_SSIZE_T_CLEAN
-#include <Python.h>
-#define NPY_NO_DEPRECATED_API NPY_1_7_API_VERSION
-#include <numpy/arrayobject.h>
+#define GEOMINT_CORE_IMPORTS_ARRAY
+#include "_core.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "geomint/geomint.h"
-
-static PyObject *Error; /* geomint.Error */
+PyObject *Error; /* geomint.Error */
 
 /* Raise geomint.Error(message) with .code (the gm_status) and .reason (gm_strerror). */
-static PyObject *raise_status(gm_status st, const char *fmt, ...) {
+PyObject *raise_status(gm_status st, const char *fmt, ...) {
   char msg[2 * GM_ERRMSG_SIZE];
   va_list ap;
   va_start(ap, fmt);
@@ -44,7 +40,7 @@ static PyObject *raise_status(gm_status st, const char *fmt, ...) {
 }
 
 /* A 1-D float64 array of n values copied from x. */
-static PyObject *array_copy(const double *x, size_t n) {
+PyObject *array_copy(const double *x, size_t n) {
   npy_intp dims[1] = {(npy_intp)n};
   PyObject *a = PyArray_SimpleNew(1, dims, NPY_DOUBLE);
   if (a && n) memcpy(PyArray_DATA((PyArrayObject *)a), x, n * sizeof *x);
@@ -52,7 +48,7 @@ static PyObject *array_copy(const double *x, size_t n) {
 }
 
 /* A read-only view of library memory whose lifetime is owner's. */
-static PyObject *array_view(const double *x, int nd, npy_intp *dims, PyObject *owner) {
+PyObject *array_view(const double *x, int nd, npy_intp *dims, PyObject *owner) {
   PyObject *a = PyArray_New(&PyArray_Type, nd, dims, NPY_DOUBLE, NULL, (void *)x, 0,
                             NPY_ARRAY_CARRAY_RO, NULL);
   if (a == NULL) return NULL;
@@ -66,7 +62,7 @@ static PyObject *array_view(const double *x, int nd, npy_intp *dims, PyObject *o
 
 /* A C-contiguous float64 array of exactly n values from obj (checked by the Python layer
  * too; here it guards the C memory). New reference or NULL with ValueError naming `what`. */
-static PyArrayObject *as_doubles(PyObject *obj, size_t n, const char *what) {
+PyArrayObject *as_doubles(PyObject *obj, size_t n, const char *what) {
   PyArrayObject *a =
       (PyArrayObject *)PyArray_FROMANY(obj, NPY_DOUBLE, 0, 0, NPY_ARRAY_CARRAY_RO);
   if (a == NULL) return NULL;
@@ -300,6 +296,7 @@ typedef struct {
   PyObject *fn[6];          /* kind-specific callables (see Problem_init) */
   PyObject *invariant_fns;  /* unused slot for symmetry with the docs */
   PyArrayObject *arg_q, *arg_p, *arg_y; /* persistent read-only argument arrays */
+  PyArrayObject *arg_R, *arg_x;         /* rigid bodies: R (3×3) and x (3) */
   double *buffer;           /* backing store of the argument arrays */
 } ProblemObject;
 
@@ -310,6 +307,8 @@ static void Problem_dealloc(ProblemObject *self) {
   Py_XDECREF(self->arg_q);
   Py_XDECREF(self->arg_p);
   Py_XDECREF(self->arg_y);
+  Py_XDECREF(self->arg_R);
+  Py_XDECREF(self->arg_x);
   free(self->buffer);
   free(self->base.y0);
   Py_XDECREF(self->base.pending);
@@ -474,6 +473,59 @@ static int fo_jacobian(void *ctx, double t, const double *y, double *out) {
   return take_result(self, res, out, n * n, "the Jacobian of f", t);
 }
 
+/* Poisson system y' = S(y)∇H(y): fn = {H(y), ∇H(y), S(y) (n×n), ∇²H(y) or NULL} */
+static PyObject *call_y(ProblemObject *self, PyObject *fn, const double *y) {
+  fill(self->arg_y, y, self->base.n_state);
+  return PyObject_CallOneArg(fn, (PyObject *)self->arg_y);
+}
+static double poisson_h(void *ctx, const double *y) {
+  ProblemObject *self = ctx;
+  return take_scalar(self, call_y(self, self->fn[FN_A], y), "the Hamiltonian H(y)");
+}
+static int poisson_grad(void *ctx, const double *y, double *out) {
+  ProblemObject *self = ctx;
+  return take_result(self, call_y(self, self->fn[FN_B], y), out, self->own.dim,
+                     "the gradient of H", NAN);
+}
+static int poisson_structure(void *ctx, const double *y, double *out) {
+  ProblemObject *self = ctx;
+  size_t n = self->own.dim;
+  return take_result(self, call_y(self, self->fn[FN_C], y), out, n * n,
+                     "the structure matrix S(y)", NAN);
+}
+static int poisson_hess(void *ctx, const double *y, double *out) {
+  ProblemObject *self = ctx;
+  size_t n = self->own.dim;
+  return take_result(self, call_y(self, self->fn[FN_D], y), out, n * n, "the Hessian of H",
+                     NAN);
+}
+
+/* Rigid body: fn = {V(R) or V(R, x), gradient (g in the body frame; dim 6: g then ∂V/∂x)}.
+ * R is passed as a read-only 3×3 array (row-major, body to space), x as a 3-vector. */
+static PyObject *call_rigid(ProblemObject *self, PyObject *fn, const double *r,
+                            const double *x) {
+  fill(self->arg_R, r, 9);
+  if (self->own.dim == 3) return PyObject_CallOneArg(fn, (PyObject *)self->arg_R);
+  fill(self->arg_x, x, 3);
+  return PyObject_CallFunctionObjArgs(fn, (PyObject *)self->arg_R, (PyObject *)self->arg_x,
+                                      NULL);
+}
+static double rigid_v(void *ctx, const double *r, const double *x) {
+  ProblemObject *self = ctx;
+  return take_scalar(self, call_rigid(self, self->fn[FN_A], r, x), "the potential V(R)");
+}
+static int rigid_grad(void *ctx, const double *r, const double *x, double *g, double *fx) {
+  ProblemObject *self = ctx;
+  double out[6];
+  size_t n = self->own.dim == 3 ? 3 : 6;
+  if (take_result(self, call_rigid(self, self->fn[FN_B], r, x), out, n,
+                  "the potential gradient (body frame)", NAN))
+    return 1;
+  memcpy(g, out, 3 * sizeof *g);
+  if (n == 6) memcpy(fx, out + 3, 3 * sizeof *fx);
+  return 0;
+}
+
 static PyArrayObject *argument_array(double *data, size_t n) {
   npy_intp dims[1] = {(npy_intp)n};
   return (PyArrayObject *)PyArray_New(&PyArray_Type, 1, dims, NPY_DOUBLE, NULL, data, 0,
@@ -499,13 +551,14 @@ static PyObject *callable_or_null(PyObject *o, const char *what, int required) {
  *   "lagrangian":  a = L(q, v), b = ∂L/∂q, c = ∂L/∂v   (state (q, p), p = ∂L/∂v)
  *   "first-order": a = f(t, y), b = ∂f/∂y (optional) */
 static int Problem_init(ProblemObject *self, PyObject *args, PyObject *kw) {
-  static char *names[] = {"kind", "dim", "t0", "y0", "a", "b", "c", "d", NULL};
+  static char *names[] = {"kind", "dim", "t0", "y0", "a", "b", "c", "d", "inertia", "mass",
+                          NULL};
   const char *kind;
   Py_ssize_t dim;
-  double t0;
-  PyObject *y0, *a = NULL, *b = NULL, *c = NULL, *d = NULL;
-  if (!PyArg_ParseTupleAndKeywords(args, kw, "sndO|OOOO", names, &kind, &dim, &t0, &y0, &a, &b,
-                                   &c, &d))
+  double t0, mass = 0.0;
+  PyObject *y0, *a = NULL, *b = NULL, *c = NULL, *d = NULL, *inertia = NULL;
+  if (!PyArg_ParseTupleAndKeywords(args, kw, "sndO|OOOOOd", names, &kind, &dim, &t0, &y0, &a,
+                                   &b, &c, &d, &inertia, &mass))
     return -1;
   if (dim <= 0) {
     PyErr_SetString(PyExc_ValueError, "dim must be positive");
@@ -559,10 +612,47 @@ static int Problem_init(ProblemObject *self, PyObject *args, PyObject *kw) {
     if (PyErr_Occurred()) return -1;
     pb->rhs = fo_rhs;
     pb->rhs_jacobian = self->fn[FN_B] ? fo_jacobian : NULL;
+  } else if (strcmp(kind, "poisson") == 0) {
+    pb->kind = GM_PROBLEM_POISSON;
+    if (!(self->fn[FN_A] = callable_or_null(a, "H(y)", 1))) return -1;
+    if (!(self->fn[FN_B] = callable_or_null(b, "grad_H(y)", 1))) return -1;
+    if (!(self->fn[FN_C] = callable_or_null(c, "S(y)", 1))) return -1;
+    self->fn[FN_D] = callable_or_null(d, "the Hessian of H", 0);
+    if (PyErr_Occurred()) return -1;
+    pb->poisson_energy = poisson_h;
+    pb->poisson_gradient = poisson_grad;
+    pb->structure_matrix = poisson_structure;
+    pb->poisson_hessian = self->fn[FN_D] ? poisson_hess : NULL;
+  } else if (strcmp(kind, "rigid-body") == 0) {
+    /* a = V, b = its gradient (both or neither: a free body); inertia: 9 values (J) */
+    pb->kind = GM_PROBLEM_RIGID_BODY;
+    if (dim != 3 && dim != 6) {
+      PyErr_Format(PyExc_ValueError, "rigid body: dim must be 3 (attitude) or 6 (attitude and "
+                   "position), got %zd", dim);
+      return -1;
+    }
+    self->fn[FN_A] = callable_or_null(a, "V", 0);
+    if (PyErr_Occurred()) return -1;
+    self->fn[FN_B] = callable_or_null(b, "grad_V", 0);
+    if (PyErr_Occurred()) return -1;
+    if ((self->fn[FN_A] == NULL) != (self->fn[FN_B] == NULL)) {
+      PyErr_SetString(PyExc_ValueError, "rigid body: give both V and grad_V, or neither");
+      return -1;
+    }
+    PyArrayObject *j = as_doubles(inertia ? inertia : Py_None, 9, "inertia");
+    if (j == NULL) return -1;
+    memcpy(pb->inertia, PyArray_DATA(j), sizeof pb->inertia);
+    Py_DECREF(j);
+    pb->mass = mass;
+    pb->space = gm_rigid_body_space((size_t)dim);
+    if (self->fn[FN_A]) {
+      pb->rigid_potential = rigid_v;
+      pb->rigid_potential_gradient = rigid_grad;
+    }
   } else {
     PyErr_Format(PyExc_ValueError,
-                 "kind must be 'separable', 'hamiltonian', 'lagrangian' or 'first-order', "
-                 "got '%s'", kind);
+                 "kind must be 'separable', 'hamiltonian', 'lagrangian', 'first-order', "
+                 "'poisson' or 'rigid-body', got '%s'", kind);
     return -1;
   }
   gm_error err = {{0}};
@@ -575,7 +665,7 @@ static int Problem_init(ProblemObject *self, PyObject *args, PyObject *kw) {
   self->base.python = 1;
   self->base.t0 = t0;
   self->base.n_state = gm_problem_state_size(pb);
-  self->buffer = calloc(2 * n + self->base.n_state, sizeof(double));
+  self->buffer = calloc(2 * n + self->base.n_state + 12, sizeof(double));
   self->base.y0 = malloc(self->base.n_state * sizeof(double));
   if (!self->buffer || !self->base.y0) {
     PyErr_NoMemory();
@@ -588,7 +678,12 @@ static int Problem_init(ProblemObject *self, PyObject *args, PyObject *kw) {
   self->arg_q = argument_array(self->buffer, n);
   self->arg_p = argument_array(self->buffer + n, n);
   self->arg_y = argument_array(self->buffer + 2 * n, self->base.n_state);
-  return (self->arg_q && self->arg_p && self->arg_y) ? 0 : -1;
+  npy_intp d33[2] = {3, 3};
+  double *rx = self->buffer + 2 * n + self->base.n_state;
+  self->arg_R = (PyArrayObject *)PyArray_New(&PyArray_Type, 2, d33, NPY_DOUBLE, NULL, rx, 0,
+                                             NPY_ARRAY_CARRAY_RO, NULL);
+  self->arg_x = argument_array(rx + 9, 3);
+  return (self->arg_q && self->arg_p && self->arg_y && self->arg_R && self->arg_x) ? 0 : -1;
 }
 
 /* Shared getters of both problem types. */
@@ -763,6 +858,8 @@ typedef struct {
   PyObject *observer;  /* Python observer(t, y) or NULL */
   PyArrayObject *obs_y; /* persistent argument of the observer */
   size_t every;
+  PyObject *progress;   /* Python progress(fraction, t) or NULL */
+  double t_start, t_target; /* of the run in progress (fraction of the way) */
   /* the recording of the run in progress */
   int recording;
   size_t n_rec, cap_rec;
@@ -775,6 +872,7 @@ static void Integrator_dealloc(IntegratorObject *self) {
   gm_method_free(self->own_basic);
   Py_XDECREF(self->problem);
   Py_XDECREF(self->observer);
+  Py_XDECREF(self->progress);
   Py_XDECREF(self->obs_y);
   free(self->rec_t);
   free(self->rec_y);
@@ -822,18 +920,43 @@ static int record_observe(void *ctx, size_t step, double t, const double *y) {
   return 0;
 }
 
+/* The progress observer: progress(fraction of the run's time span done, t). */
+static int progress_observe(void *ctx, size_t step, double t, const double *y) {
+  (void)step, (void)y;
+  IntegratorObject *self = ctx;
+  double span = self->t_target - self->t_start;
+  double f = NAN; /* unknown for a resumed checkpoint */
+  if (isfinite(span)) f = span != 0.0 ? fmin(1.0, fmax(0.0, (t - self->t_start) / span)) : 1.0;
+  PyObject *r = PyObject_CallFunction(self->progress, "dd", f, t);
+  if (r == NULL) {
+    keep_exception(self->pb, "the progress callback", t);
+    return 1;
+  }
+  Py_DECREF(r);
+  if (PyErr_CheckSignals() < 0) {
+    keep_exception(self->pb, "a signal", t);
+    return 1;
+  }
+  return 0;
+}
+
 /* Integrator(method, problem, basic=None, solver=None, compensated=False, every=1,
- *            observer=None, record=True) */
+ *            observer=None, record=True, progress=None, progress_every=1000) */
 static int Integrator_init(IntegratorObject *self, PyObject *args, PyObject *kw) {
   static char *names[] = {"method", "problem", "basic", "solver", "compensated", "every",
-                          "observer", "record", NULL};
+                          "observer", "record", "progress", "progress_every", NULL};
   const char *method, *basic = NULL, *solver = NULL;
-  PyObject *problem, *observer = NULL;
+  PyObject *problem, *observer = NULL, *progress = NULL;
   int comp = 0, record = 1;
-  Py_ssize_t every = 1;
-  if (!PyArg_ParseTupleAndKeywords(args, kw, "sO|zzpnOp", names, &method, &problem, &basic,
-                                   &solver, &comp, &every, &observer, &record))
+  Py_ssize_t every = 1, progress_every = 1000;
+  if (!PyArg_ParseTupleAndKeywords(args, kw, "sO|zzpnOpOn", names, &method, &problem, &basic,
+                                   &solver, &comp, &every, &observer, &record, &progress,
+                                   &progress_every))
     return -1;
+  if (progress_every < 1) {
+    PyErr_SetString(PyExc_ValueError, "progress_every must be >= 1");
+    return -1;
+  }
   ProblemBase *pb = as_problem(problem);
   if (pb == NULL) return -1;
   if (every < 1) {
@@ -878,6 +1001,19 @@ static int Integrator_init(IntegratorObject *self, PyObject *args, PyObject *kw)
     }
   }
   self->recording = record;
+  if (progress && progress != Py_None) {
+    if (!PyCallable_Check(progress)) {
+      PyErr_SetString(PyExc_TypeError, "progress must be callable as progress(fraction, t)");
+      return -1;
+    }
+    Py_INCREF(progress);
+    self->progress = progress;
+    st = gm_integrator_add_observer(self->it, progress_observe, self, (size_t)progress_every);
+    if (st != GM_OK) {
+      raise_status(st, "%s", gm_integrator_errmsg(self->it));
+      return -1;
+    }
+  }
   st = gm_integrator_set_state(self->it, pb->t0, pb->y0);
   if (st != GM_OK) {
     raise_status(st, "initial state: %s", gm_integrator_errmsg(self->it));
@@ -901,7 +1037,7 @@ static PyObject *Integrator_set_state(IntegratorObject *self, PyObject *args) {
 /* Free function for capsules owning malloc'ed buffers handed to NumPy. */
 static void capsule_free(PyObject *cap) { free(PyCapsule_GetPointer(cap, NULL)); }
 
-static PyObject *owned_array(double *data, int nd, npy_intp *dims) {
+PyObject *owned_array(double *data, int nd, npy_intp *dims) {
   PyObject *a = PyArray_SimpleNewFromData(nd, dims, NPY_DOUBLE, data);
   if (a == NULL) {
     free(data);
@@ -957,6 +1093,8 @@ static PyObject *Integrator_run(IntegratorObject *self, PyObject *args) {
     return NULL;
   }
   self->n_rec = 0;
+  self->t_start = gm_integrator_time(self->it);
+  self->t_target = self->t_start + (double)steps * dt;
   gm_status st = gm_integrator_run(self->it, (size_t)steps, dt);
   return finish_run(self, st);
 }
@@ -965,6 +1103,8 @@ static PyObject *Integrator_integrate(IntegratorObject *self, PyObject *args) {
   double t_end, dt;
   if (!PyArg_ParseTuple(args, "dd", &t_end, &dt)) return NULL;
   self->n_rec = 0;
+  self->t_start = gm_integrator_time(self->it);
+  self->t_target = t_end;
   gm_status st = gm_integrator_integrate(self->it, t_end, dt);
   return finish_run(self, st);
 }
@@ -972,6 +1112,7 @@ static PyObject *Integrator_integrate(IntegratorObject *self, PyObject *args) {
 static PyObject *Integrator_resume(IntegratorObject *self, PyObject *args) {
   (void)args;
   self->n_rec = 0;
+  self->t_start = self->t_target = NAN; /* the checkpoint's target is not exposed */
   gm_status st = gm_integrator_resume(self->it);
   return finish_run(self, st);
 }
@@ -1121,14 +1262,6 @@ static PyObject *csr_tuple(const gm_csr *a) {
                        (Py_ssize_t)a->n_cols);
 }
 
-typedef struct {
-  PyObject_HEAD
-  gm_mesh *mesh;          /* owned, NULL when built from arrays only */
-  gm_complex *cx;         /* owned */
-  gm_geometry *g;         /* owned, NULL until first needed */
-  char geometry_error[GM_ERRMSG_SIZE];
-} ComplexObject;
-
 static void Complex_dealloc(ComplexObject *self) {
   gm_geometry_free(self->g);
   gm_complex_free(self->cx);
@@ -1181,7 +1314,7 @@ static int Complex_init(ComplexObject *self, PyObject *args, PyObject *kw) {
   return 0;
 }
 
-static gm_geometry *geometry(ComplexObject *self) {
+gm_geometry *geometry(ComplexObject *self) {
   if (self->g) return self->g;
   gm_error err = {{0}};
   gm_status st = gm_geometry_create(self->cx, NULL, &self->g, &err);
@@ -1440,7 +1573,7 @@ static PyGetSetDef Complex_getset[] = {
     {"dim", (getter)Complex_get_dim, NULL, "dimension of the top simplices", NULL},
     {NULL, NULL, NULL, NULL, NULL}};
 
-static PyTypeObject ComplexType = {
+PyTypeObject ComplexType = {
     PyVarObject_HEAD_INIT(NULL, 0).tp_name = "geomint._core.Complex",
     .tp_basicsize = sizeof(ComplexObject),
     .tp_flags = Py_TPFLAGS_DEFAULT,
@@ -1684,6 +1817,7 @@ PyMODINIT_FUNC PyInit__core(void) {
       "e.reason its sentence.",
       NULL, NULL);
   if (Error == NULL || PyModule_AddObjectRef(m, "Error", Error) < 0) return NULL;
+  if (fields_add_to_module(m) < 0) return NULL;
   const char *names[] = {"Model", "Problem", "Integrator", "Complex", "Yee"};
   for (size_t i = 0; i < sizeof types / sizeof *types; ++i)
     if (PyModule_AddObjectRef(m, names[i], (PyObject *)types[i]) < 0) return NULL;

@@ -50,6 +50,28 @@ class Complex:
         return cls(_core.Complex(vertices=np.ascontiguousarray(v, dtype=np.float64),
                                  simplices=np.ascontiguousarray(s, dtype=np.uint64)))
 
+    PATTERNS = {"right": 0, "left": 1, "alternate": 2, "acute": 3}
+
+    @classmethod
+    def rectangle(cls, x0, x1, y0, y1, nx, ny, pattern="acute"):
+        """The triangulated rectangle [x0, x1] × [y0, y1] with nx × ny cells; pattern "right",
+        "left", "alternate" (diagonals) or "acute" (rows shifted by half a cell: well-centred
+        inside, as mesh Maxwell's diagonal stars need)."""
+        if pattern not in cls.PATTERNS:
+            raise ValueError(f"pattern: one of {', '.join(cls.PATTERNS)}, got {pattern!r}")
+        return cls(_core.mesh_rectangle(float(x0), float(x1), float(y0), float(y1), int(nx),
+                                        int(ny), cls.PATTERNS[pattern]))
+
+    @classmethod
+    def box(cls, lo, hi, n, pattern="kuhn"):
+        """The tetrahedralized box [lo, hi] with n = (nx, ny, nz) cubes, 6 ("kuhn") or 5
+        ("five") tetrahedra each."""
+        if pattern not in ("kuhn", "five"):
+            raise ValueError(f"pattern: 'kuhn' or 'five', got {pattern!r}")
+        nx, ny, nz = (int(v) for v in n)
+        return cls(_core.mesh_box(tuple(map(float, lo)), tuple(map(float, hi)), nx, ny, nz,
+                                  0 if pattern == "kuhn" else 1))
+
     @property
     def dim(self):
         """Dimension of the top simplices."""

@@ -29,13 +29,15 @@ def energy_error(*results, path=None, labels=None):
     return _finish(fig, path)
 
 
-def work_precision(rows, path=None):
-    """rows: {label: (costs, errors)} (e.g. force evaluations or seconds against error);
-    log–log lines, one per label."""
+def work_precision(rows, path=None, cost="force_evals"):
+    """rows: {label: (costs, errors)}, or the result of geomint.work_precision (then `cost`
+    picks "force_evals", "seconds" or "steps"); log–log lines, one per label."""
     fig, ax = plt.subplots(figsize=(6, 4))
-    for label, (cost, err) in rows.items():
-        ax.loglog(cost, err, "o-", label=label)
-    ax.set_xlabel("cost")
+    for label, row in rows.items():
+        c, err = (row[cost], row["error"]) if isinstance(row, dict) else row
+        ax.loglog(c, err, "o-", label=label)
+    ax.set_xlabel(cost.replace("_", " ") if any(isinstance(r, dict) for r in rows.values())
+                  else "cost")
     ax.set_ylabel("error")
     ax.legend()
     return _finish(fig, path)
