@@ -1,18 +1,20 @@
 #!/usr/bin/env bash
 # The Python package installed from a fresh clone, with no build/ directory: pip must configure
 # and build libgeomint itself (python/setup.py) before the extension links it. Takes minutes
-# (the whole library is compiled), so it is not a ctest; run it by hand:
-#   tests/python/fresh_install.sh [REPOSITORY [BRANCH]]    (default: this checkout, its HEAD)
+# (the whole library is compiled); ctest runs it as python_fresh_install, or by hand:
+#   tests/python/fresh_install.sh [REPOSITORY [REVISION]]    (default: this checkout, its HEAD)
 # Clones into a temporary directory, makes a venv of Debian's /usr/bin/python3 with
 # --system-site-packages, runs `pip install --no-build-isolation --no-index ./python`, then the
 # five-line start from a directory outside the clone. Removes the directory at the end.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/../.." && pwd)
 repo=${1:-$here}
-branch=${2:-$(git -C "$here" rev-parse --abbrev-ref HEAD)}
+# default: the commit checked out here (works on a detached HEAD, as in CI)
+rev=${2:-$(git -C "$here" rev-parse HEAD)}
 tmp=$(mktemp -d /tmp/geomint-fresh.XXXXXX)
 trap 'rm -rf "$tmp"' EXIT
-git clone --quiet --branch "$branch" "$repo" "$tmp/clone"
+git clone --quiet --no-checkout "$repo" "$tmp/clone"
+git -C "$tmp/clone" checkout --quiet "$rev"
 if [[ -e "$tmp/clone/build" ]]; then
   echo "fresh_install: the clone has a build/ directory" >&2
   exit 1
