@@ -150,6 +150,36 @@ gm_status gm_multigrid_pcg(gm_multigrid *mg, const double *b, double *x, size_t 
 double gm_multigrid_contraction(gm_multigrid *mg, size_t cycles);
 const char *gm_multigrid_errmsg(const gm_multigrid *mg);
 
+/* ---- algebraic multigrid through hypre (optional: Debian libhypre-dev) -------------------- */
+
+/* Conjugate gradients preconditioned by one cycle of hypre's BoomerAMG (classical AMG, HMIS
+ * coarsening, extended+i interpolation, l1-Gauss–Seidel smoothing: the settings hypre's manual
+ * recommends for 3-D problems) or AMS (the auxiliary-space Maxwell solver of Hiptmair and Xu,
+ * SIAM J. Numer. Anal. 45 (2007) 2483–2509; Kolev and Vassilevski, J. Comput. Math. 27 (2009)
+ * 604–623), both run on one process (MPI_COMM_SELF; MPI is initialised here when the caller has
+ * not). The report gives the setup and solve seconds (thread CPU time: hypre runs on this
+ * thread), the CG iterations and the final relative residual ‖b − Ax‖/‖b‖ (recomputed here with
+ * gm_csr_matvec, not hypre's own). Built without hypre, every call returns GM_EUNSUPPORTED
+ * saying so. */
+typedef struct gm_hypre_report {
+  size_t iterations;
+  double relative_residual;
+  double setup_s, solve_s;
+} gm_hypre_report;
+
+/* 1 when geomint was built with hypre. */
+int gm_hypre_available(void);
+/* A x = b for a symmetric positive definite A (a 0-form Laplacian), from the guess in x. */
+gm_status gm_hypre_boomeramg_pcg(const gm_csr *A, const double *b, double *x, double rtol,
+                                 size_t max_iterations, gm_hypre_report *report, gm_error *err);
+/* A x = b for an edge (1-form) system A = d_1ᵀ ⋆_2 d_1 + ⋆_1 (curl–curl plus a positive mass
+ * term) in 3-D: G is the discrete gradient d_0 on the same edges (rows = A's unknowns, columns =
+ * the vertices whose gradients lie in the space, e.g. interior edges × interior vertices for a
+ * Dirichlet problem) and xyz the coordinates of those vertices (3 per column of G). */
+gm_status gm_hypre_ams_pcg(const gm_csr *A, const gm_csr *G, const double *xyz, const double *b,
+                           double *x, double rtol, size_t max_iterations, gm_hypre_report *report,
+                           gm_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,5 +1,6 @@
-/* The manufactured-solution Poisson check behind `geomint mesh poisson`, solved by CHOLMOD or by
- * CG preconditioned with a geometric multigrid V-cycle on the red-refinement hierarchy. */
+/* The manufactured-solution Poisson check behind `geomint mesh poisson`, solved by CHOLMOD, by
+ * CG preconditioned with a geometric multigrid V-cycle on the red-refinement hierarchy, or by CG
+ * with hypre's BoomerAMG. */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -149,7 +150,8 @@ gm_status gm_mesh_poisson_solve(const gm_mesh *mesh, const gm_poisson_options *o
                         "the Poisson check needs a mesh that fills its space (cells of dimension "
                         "%zu in R^%zu): a surface has no Dirichlet boundary to pin",
                         mesh->dim, mesh->N);
-  if (opt.solver != GM_POISSON_CHOLMOD && opt.solver != GM_POISSON_MULTIGRID)
+  if (opt.solver != GM_POISSON_CHOLMOD && opt.solver != GM_POISSON_MULTIGRID &&
+      opt.solver != GM_POISSON_HYPRE)
     return gm_error_set(err, GM_EINVAL, "unknown Poisson solver %d", (int)opt.solver);
   if (opt.levels > 20) return gm_error_set(err, GM_EINVAL, "%zu refinements: at most 20", opt.levels);
   if (opt.solver == GM_POISSON_MULTIGRID && opt.levels == 0)
@@ -209,6 +211,12 @@ gm_status gm_mesh_poisson_solve(const gm_mesh *mesh, const gm_poisson_options *o
       goto done;
     }
     report->solve_s = wall_now() - t1;
+  } else if (opt.solver == GM_POISSON_HYPRE) {
+    gm_hypre_report hr;
+    st = gm_hypre_boomeramg_pcg(s.aii, s.rhs, sol, opt.rtol, opt.max_iterations, &hr, err);
+    report->iterations = hr.iterations, report->relative_residual = hr.relative_residual;
+    report->factor_s = hr.setup_s, report->solve_s = hr.solve_s;
+    if (st != GM_OK) goto done;
   } else {
     /* P[l]: level (levels − l − 1) → level (levels − l), finest first, on interior vertices
      * (the correction vanishes on the Dirichlet boundary); the fine level's boundary mask is the
