@@ -78,7 +78,7 @@ typedef struct gm_well_centredness {
 
 gm_status gm_refinement_well_centredness(const gm_refinement *r, gm_well_centredness *wc);
 
-/* ---- unrelated triangle meshes of one domain (2-D) ---------------------------------------- */
+/* ---- unrelated meshes of one domain: triangles (2-D), tetrahedra (3-D, top forms) ---------- */
 
 typedef struct gm_transfer_report {
   double volume_from, volume_to; /* areas of the two domains (Σ |T|) */
@@ -95,8 +95,11 @@ typedef struct gm_transfer_report {
  *          circumcentric dual cell on well-centred meshes), applied to the densities: (Tf)(w) =
  *          Σ_v |V_w ∩ V_v| f(v) / Σ_v |V_w ∩ V_v|: constants are kept exactly, the integral
  *          Σ |V_v| f(v) to round-off.
+ * Tetrahedral meshes in R³ (n = N = 3): k = 3 only, T[τ, σ] = |τ ∩ σ| / Σ_τ' |τ' ∩ σ| as for
+ * k = 2, the intersections by clipping σ with τ's four half-spaces (src/dec/transfer_clip3.c).
  * Errors: GM_EINVAL when the domains differ: |from|, |to| and their overlap are compared and
- * a difference above 1e-10 relative is refused with the three areas in the message. */
+ * a difference above 1e-10 relative is refused with the three areas (volumes) in the message;
+ * GM_EUNSUPPORTED for other dimensions or degrees. */
 gm_status gm_dec_transfer(const gm_complex *from, const gm_complex *to, size_t k, gm_csr **out,
                           gm_transfer_report *report, gm_error *err);
 

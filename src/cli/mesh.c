@@ -12,7 +12,7 @@
 
 static const char usage[] =
     "usage: geomint mesh info FILE [--json]\n"
-    "       geomint mesh poisson FILE [--out FILE.vtu] [--solver cholmod|mg] [--refine L]\n"
+    "       geomint mesh poisson FILE [--out FILE.vtu] [--solver cholmod|mg|hypre] [--refine L]\n"
     "       geomint mesh poisson --levels L [--dim 2|3] [--n0 N] [--json]\n"
     "       geomint mesh refine FILE --levels L [--out FILE.msh] [--max-memory SIZE] [--json]\n"
     "       geomint mesh transfer A B [--json]\n\n"
@@ -37,8 +37,9 @@ static const char usage[] =
     "  --json       (info, poisson --levels) print one JSON object\n"
     "  --out FILE   (poisson) write the mesh with u_h, u and the error to a .vtu file;\n"
     "               (refine) write the finest mesh as .msh\n"
-    "  --solver S   (poisson FILE) cholmod (default) or mg: CG preconditioned by a geometric\n"
-    "               multigrid V-cycle on the hierarchy FILE -> --refine L refinements (L >= 1)\n"
+    "  --solver S   (poisson FILE) cholmod (default), mg: CG preconditioned by a geometric\n"
+    "               multigrid V-cycle on the hierarchy FILE -> --refine L refinements (L >= 1),\n"
+    "               or hypre: CG preconditioned by BoomerAMG (needs a build with libhypre-dev)\n"
     "  --refine L   (poisson FILE) solve on the mesh refined L times (default 0)\n"
     "  --max-memory SIZE  (refine, poisson) refuse a refinement whose mesh needs more (suffix\n"
     "               K, M, G; default: the physical memory)\n"
@@ -219,6 +220,10 @@ static int mesh_poisson(const char *path, const char *out, const gm_poisson_opti
     printf("  %-24s %zu (relative residual %.3e)\n", "CG iterations", rep.iterations,
            rep.relative_residual);
     printf("  %-24s %.4f\n", "V-cycle contraction", rep.contraction);
+  } else if (opt->solver == GM_POISSON_HYPRE) {
+    printf("  %-24s hypre: CG + BoomerAMG\n", "solver");
+    printf("  %-24s %zu (relative residual %.3e)\n", "CG iterations", rep.iterations,
+           rep.relative_residual);
   } else {
     printf("  %-24s cholmod (relative residual %.3e)\n", "solver", rep.relative_residual);
   }
@@ -452,7 +457,7 @@ static int mesh_main(int argc, char **argv) {
     if (solver != NULL) {
       int sv = cli_mesh_solver(solver);
       if (sv < 0) {
-        cli_error("mesh", "--solver %s: use cholmod or mg", solver);
+        cli_error("mesh", "--solver %s: use cholmod, mg or hypre", solver);
         return CLI_EXIT_USAGE;
       }
       opt.solver = (gm_poisson_solver)sv;
