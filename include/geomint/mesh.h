@@ -186,6 +186,7 @@ typedef struct gm_poisson_report {
   size_t iterations;             /* CG iterations (multigrid, hypre; 0 for CHOLMOD) */
   double relative_residual;      /* ‖b − A u‖ / ‖b‖ of the interior system */
   double contraction;            /* V-cycle contraction factor, when measured (else 0) */
+  int solver;                    /* the gm_poisson_solver that ran (GM_POISSON_AUTO resolved) */
   double setup_s;                /* wall seconds: refinement, complex, geometry, assembly */
   double factor_s;               /* CHOLMOD analyse + factor, the multigrid hierarchy, or
                                     hypre's setup */
@@ -196,11 +197,19 @@ typedef enum {
   GM_POISSON_CHOLMOD = 0,  /* sparse Cholesky of the interior system */
   GM_POISSON_MULTIGRID = 1, /* CG preconditioned by a geometric V-cycle (geomint/multigrid.h) on
                               the hierarchy input mesh → `levels` red refinements */
-  GM_POISSON_HYPRE = 2      /* CG preconditioned by hypre's BoomerAMG (gm_hypre_boomeramg_pcg) */
+  GM_POISSON_HYPRE = 2,     /* CG preconditioned by hypre's BoomerAMG (gm_hypre_boomeramg_pcg) */
+  GM_POISSON_AUTO = 3       /* the default: chosen by measurement (docs/dec.md, "Which solver"):
+                               multigrid when levels >= 1 (a hierarchy exists); otherwise CHOLMOD
+                               below GM_POISSON_HYPRE_MIN_UNKNOWNS interior unknowns, hypre (when
+                               built with it) from there on */
 } gm_poisson_solver;
 
+/* The size from which GM_POISSON_AUTO prefers hypre to CHOLMOD on an unrefined mesh: measured
+ * wall time of `geomint mesh poisson` (MPI start-up included) in docs/dec.md, "Which solver". */
+#define GM_POISSON_HYPRE_MIN_UNKNOWNS 10000
+
 typedef struct gm_poisson_options {
-  gm_poisson_solver solver; /* default CHOLMOD */
+  gm_poisson_solver solver; /* default GM_POISSON_AUTO */
   size_t levels;            /* red refinements of the input before solving (default 0; the
                                multigrid needs >= 1: the input is its coarsest level) */
   double rtol;              /* multigrid, hypre: relative residual (default 1e-10) */
@@ -221,7 +230,7 @@ gm_poisson_options gm_poisson_defaults(void);
 gm_status gm_mesh_poisson(const gm_mesh *mesh, gm_poisson_report *report, double *u_out,
                           gm_error *err);
 /* The same check after options->levels red refinements of mesh (gm_mesh_refine), solved by the
- * chosen solver (options NULL: defaults, i.e. gm_mesh_poisson). *u_out (may be NULL) receives
+ * chosen solver (options NULL: defaults, GM_POISSON_AUTO). *u_out (may be NULL) receives
  * the vertex values on the refined mesh (report->n_vertices, owned by the caller). Errors as
  * gm_mesh_poisson; GM_ENOMEM naming the bytes when the refined mesh would exceed
  * options->max_bytes; GM_ENOCONV when CG does not reach rtol. */

@@ -37,9 +37,11 @@ static const char usage[] =
     "  --json       (info, poisson --levels) print one JSON object\n"
     "  --out FILE   (poisson) write the mesh with u_h, u and the error to a .vtu file;\n"
     "               (refine) write the finest mesh as .msh\n"
-    "  --solver S   (poisson FILE) cholmod (default), mg: CG preconditioned by a geometric\n"
+    "  --solver S   (poisson FILE) cholmod, mg: CG preconditioned by a geometric\n"
     "               multigrid V-cycle on the hierarchy FILE -> --refine L refinements (L >= 1),\n"
-    "               or hypre: CG preconditioned by BoomerAMG (needs a build with libhypre-dev)\n"
+    "               or hypre: CG preconditioned by BoomerAMG (needs a build with libhypre-dev);\n"
+    "               default: mg with --refine, else cholmod below 10000 unknowns, else hypre\n"
+    "               (the measurement behind it: docs/dec.md, 'Which solver')\n"
     "  --refine L   (poisson FILE) solve on the mesh refined L times (default 0)\n"
     "  --max-memory SIZE  (refine, poisson) refuse a refinement whose mesh needs more (suffix\n"
     "               K, M, G; default: the physical memory)\n"
@@ -214,13 +216,13 @@ static int mesh_poisson(const char *path, const char *out, const gm_poisson_opti
   printf("poisson on %s: -Δu = f, u = Π sin(π(x_i − lo_i)/L_i + 1/4), Dirichlet boundary\n", path);
   if (opt->levels > 0) printf("  %-24s %zu (%zu cells)\n", "refinements", opt->levels, rep.n_cells);
   printf("  %-24s %zu (%zu unknowns)\n", "vertices", rep.n_vertices, rep.n_unknowns);
-  if (opt->solver == GM_POISSON_MULTIGRID) {
+  if (rep.solver == GM_POISSON_MULTIGRID) {
     printf("  %-24s mg: CG + V(%zu,%zu) Gauss-Seidel, %zu levels\n", "solver", opt->pre_smooth,
            opt->post_smooth, opt->levels + 1);
     printf("  %-24s %zu (relative residual %.3e)\n", "CG iterations", rep.iterations,
            rep.relative_residual);
     printf("  %-24s %.4f\n", "V-cycle contraction", rep.contraction);
-  } else if (opt->solver == GM_POISSON_HYPRE) {
+  } else if (rep.solver == GM_POISSON_HYPRE) {
     printf("  %-24s hypre: CG + BoomerAMG\n", "solver");
     printf("  %-24s %zu (relative residual %.3e)\n", "CG iterations", rep.iterations,
            rep.relative_residual);
@@ -477,7 +479,7 @@ static int mesh_main(int argc, char **argv) {
     }
     opt.levels = refine;
     opt.max_bytes = max_memory_bytes;
-    opt.measure_contraction = opt.solver == GM_POISSON_MULTIGRID;
+    opt.measure_contraction = opt.solver == GM_POISSON_MULTIGRID || opt.solver == GM_POISSON_AUTO;
     return mesh_poisson(pos[1], out, &opt);
   }
   cli_error("mesh", "unknown subcommand '%s': use info, poisson, refine or transfer", pos[0]);
