@@ -127,11 +127,14 @@ gm_multigrid_options gm_multigrid_defaults(void);
 typedef struct gm_multigrid gm_multigrid;
 
 /* A hierarchy of n_levels = n_prolongations + 1 levels, level 0 the finest with the symmetric
- * positive definite matrix A (copied); P[l] (n_l × n_{l+1}, copied) prolongs level l+1 to level
- * l. The coarse operators are Galerkin products A_{l+1} = P[l]ᵀ A_l P[l]; the coarsest level is
- * factored by CHOLMOD. All work arrays are allocated here. Errors: GM_EINVAL for shapes that do
- * not chain, GM_ESINGULAR when a diagonal entry is not positive or the coarsest matrix is not
- * positive definite. */
+ * positive definite matrix A (borrowed: it must outlive the object; CG's products use it);
+ * P[l] (n_l × n_{l+1}, copied) prolongs level l+1 to level l. The coarse operators are Galerkin
+ * products A_{l+1} = P[l]ᵀ A_l P[l]; the coarsest level is factored by CHOLMOD. The smoothing
+ * levels keep their operators and prolongations with 32-bit columns and float values (the
+ * arithmetic is double; src/dec/multigrid.c says why). All work arrays are allocated here.
+ * Errors: GM_EINVAL for shapes that do not chain, GM_ESINGULAR when a diagonal entry is not
+ * positive or the coarsest matrix is not positive definite, GM_EUNSUPPORTED above 2^32 − 1
+ * unknowns. */
 gm_status gm_multigrid_create(const gm_csr *A, size_t n_prolongations, const gm_csr *const *P,
                               const gm_multigrid_options *options, gm_multigrid **out,
                               gm_error *err);
