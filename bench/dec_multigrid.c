@@ -1,6 +1,6 @@
 /* DEC Poisson (0-form Laplacian d_0ᵀ ⋆_1 d_0, Dirichlet) on red-refined BCC tetrahedral meshes of
  * the unit cube: CHOLMOD against CG preconditioned by the geometric multigrid V(2,2)-cycle
- * (geomint/multigrid.h), to a relative residual of 1e-10, each as a multiple of one sparse
+ * (geomint/multigrid.h) and against CG with hypre's BoomerAMG (when built with hypre), to a relative residual of 1e-10, each as a multiple of one sparse
  * product y = A x with the same interior matrix timed in the same run (the floor of any solver
  * that touches the matrix). Each solver runs in its own child process, so the peak resident
  * memory (getrusage) is that solver's run alone (mesh, DEC build, solver). Goal of issue 24:
@@ -77,8 +77,9 @@ static gm_csr *interior(const gm_csr *a, const unsigned char *rb, const unsigned
 
 /* job 0: one sparse product (best of 5, CPU time of the thread); 1: CHOLMOD analyse + factor +
  * solve; 2: multigrid hierarchy (prolongations gm_refinement_vertex_prolongation on interior
- * vertices, Galerkin products, coarsest factor) + PCG. Times are CPU seconds of the
- * process (the machine is shared: wall time measures the other jobs too). */
+ * vertices, Galerkin products, coarsest factor) + PCG; 3: hypre BoomerAMG setup + PCG. Times
+ * are CPU seconds of the process for CHOLMOD (its BLAS threads) and of the thread for the
+ * single-threaded MG and hypre (the machine is shared: wall time measures the other jobs too). */
 static void run_job(size_t L, int job, result *r) {
   gm_error err = {{0}};
   gm_mesh **m = calloc(L + 1, sizeof(gm_mesh *));
