@@ -1,8 +1,8 @@
 /* DEC Poisson (0-form Laplacian d_0ᵀ ⋆_1 d_0, Dirichlet) on red-refined BCC tetrahedral meshes of
  * the unit cube: CHOLMOD against CG preconditioned by the geometric multigrid V(2,2)-cycle
  * (geomint/multigrid.h) and CG with hypre's BoomerAMG (when built with hypre), to a relative
- * residual of 1e-10, each as a multiple of one sparse product y = A x with the same interior matrix timed in the same run (the floor of any solver
- * that touches the matrix). Each solver runs in its own child process, so the peak resident
+ * residual of 1e-10, each as a multiple of one sparse product y = A x with the same interior
+ * matrix timed in the same run (the floor of any solver that touches the matrix). Each solver runs in its own child process, so the peak resident
  * memory (getrusage) is that solver's run alone (mesh, DEC build, solver). Goal of issue 24:
  * the iterative solver within 40 products' worth.
  * Usage: bench_dec_multigrid [results-dir [finest-level [cholmod-finest-level]]]: levels 3..L
