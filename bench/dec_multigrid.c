@@ -2,8 +2,9 @@
  * the unit cube: CHOLMOD against CG preconditioned by the geometric multigrid V(2,2)-cycle
  * (geomint/multigrid.h) and CG with hypre's BoomerAMG (when built with hypre), to a relative
  * residual of 1e-10, each as a multiple of one sparse product y = A x with the same interior
- * matrix timed in the same run (the floor of any solver that touches the matrix). Each solver runs in its own child process, so the peak resident
- * memory (getrusage) is that solver's run alone (mesh, DEC build, solver). Goal of issue 24:
+ * matrix timed in the same run (the floor of any solver that touches the matrix). Each solver
+ * runs in its own child process, so the peak resident memory (getrusage) is that solver's run
+ * alone (mesh, DEC build, solver). Goal of issue 24:
  * the iterative solver within 40 products' worth.
  * Usage: bench_dec_multigrid [results-dir [finest-level [cholmod-finest-level]]]: levels 3..L
  * of the BCC cube 2×2×2 (48 tets; level l has 48·8^l tets), default L = 5 for both. */
