@@ -1,9 +1,10 @@
 /* DEC Poisson (0-form Laplacian d_0ᵀ ⋆_1 d_0, Dirichlet) on red-refined BCC tetrahedral meshes of
  * the unit cube: CHOLMOD against CG preconditioned by the geometric multigrid V(2,2)-cycle
- * (geomint/multigrid.h), to a relative residual of 1e-10, each as a multiple of one sparse
- * product y = A x with the same interior matrix timed in the same run (the floor of any solver
- * that touches the matrix). Each solver runs in its own child process, so the peak resident
- * memory (getrusage) is that solver's run alone (mesh, DEC build, solver). Goal of issue 24:
+ * (geomint/multigrid.h) and CG with hypre's BoomerAMG (when built with hypre), to a relative
+ * residual of 1e-10, each as a multiple of one sparse product y = A x with the same interior
+ * matrix timed in the same run (the floor of any solver that touches the matrix). Each solver
+ * runs in its own child process, so the peak resident memory (getrusage) is that solver's run
+ * alone (mesh, DEC build, solver). Goal of issue 24:
  * the iterative solver within 40 products' worth.
  * Usage: bench_dec_multigrid [results-dir [finest-level [cholmod-finest-level]]]: levels 3..L
  * of the BCC cube 2×2×2 (48 tets; level l has 48·8^l tets), default L = 5 for both. */
@@ -77,8 +78,9 @@ static gm_csr *interior(const gm_csr *a, const unsigned char *rb, const unsigned
 
 /* job 0: one sparse product (best of 5, CPU time of the thread); 1: CHOLMOD analyse + factor +
  * solve; 2: multigrid hierarchy (prolongations gm_refinement_vertex_prolongation on interior
- * vertices, Galerkin products, coarsest factor) + PCG. Times are CPU seconds of the
- * process (the machine is shared: wall time measures the other jobs too). */
+ * vertices, Galerkin products, coarsest factor) + PCG; 3: hypre BoomerAMG setup + PCG. Times
+ * are CPU seconds of the process for CHOLMOD (its BLAS threads) and of the thread for the
+ * single-threaded MG and hypre (the machine is shared: wall time measures the other jobs too). */
 static void run_job(size_t L, int job, result *r) {
   gm_error err = {{0}};
   gm_mesh **m = calloc(L + 1, sizeof(gm_mesh *));
@@ -126,8 +128,9 @@ static void run_job(size_t L, int job, result *r) {
       r->ok = 1;
     }
     gm_sparse_cholesky_free(ch);
-  } else {
-    double t0 = cpu_now();
+  } else if (job == 2) { /* single-threaded: the thread's CPU time (the process's would count the OpenMP
+            * workers of the DEC build still spinning) */
+    double t0 = bench_cpu_now();
     gm_csr **P = calloc(L, sizeof(gm_csr *));
     for (size_t l = 0; l < L; ++l) /* P[l]: level L-l-1 -> level L-l, interior vertices */
       if (gm_refinement_vertex_prolongation(cx[L - l - 1], m[L - l]->n_vertices,
@@ -136,14 +139,18 @@ static void run_job(size_t L, int job, result *r) {
         return;
     gm_multigrid *mg = NULL;
     if (gm_multigrid_create(A, L, (const gm_csr *const *)P, NULL, &mg, &err) == GM_OK) {
-      r->factor_s = cpu_now() - t0;
-      t0 = cpu_now();
+      r->factor_s = bench_cpu_now() - t0;
+      t0 = bench_cpu_now();
       r->ok = gm_multigrid_pcg(mg, b, x, &r->iterations, &r->relres) == GM_OK;
-      r->solve_s = cpu_now() - t0;
+      r->solve_s = bench_cpu_now() - t0;
     }
     gm_multigrid_free(mg);
     for (size_t l = 0; l < L; ++l) gm_csr_free(P[l]);
     free(P);
+  } else { /* job 3: hypre BoomerAMG-CG (one thread: its thread CPU time, setup and solve) */
+    gm_hypre_report hr;
+    r->ok = gm_hypre_boomeramg_pcg(A, b, x, 1e-10, 200, &hr, &err) == GM_OK;
+    r->factor_s = hr.setup_s, r->solve_s = hr.solve_s, r->iterations = hr.iterations;
   }
   if (job != 0) { /* relative residual of the solution */
     double *res = malloc(n * sizeof(double)), rn = 0.0;
@@ -190,14 +197,15 @@ int main(int argc, char **argv) {
   if (f) fprintf(f, "{\n  \"bench\": \"dec_multigrid\",\n  \"rows\": [\n");
   printf("DEC Poisson on the BCC cube refined l times (48·8^l tets), rtol 1e-10; CPU seconds, "
          "'x mv' = multiples of one sparse product, MB = peak resident memory of the run\n");
-  printf("%5s %9s %9s %10s | %9s %9s %8s %7s | %9s %9s %8s %4s %7s\n", "level", "tets",
-         "unknowns", "matvec", "chol fac", "chol sol", "x mv", "MB", "mg hier", "mg cg",
-         "x mv", "its", "MB");
+  printf("%5s %9s %9s %10s | %9s %9s %8s %7s | %9s %9s %8s %4s %7s | %9s %9s %8s %4s %7s\n",
+         "level", "tets", "unknowns", "matvec", "chol fac", "chol sol", "x mv", "MB", "mg hier",
+         "mg cg", "x mv", "its", "MB", "hy setup", "hy cg", "x mv", "its", "MB");
   double last_refine = NAN, last_build = NAN;
   for (size_t L = 3; L <= finest; ++L) {
     result mv = in_child(L, 0);
     result ch = L <= chol_finest ? in_child(L, 1) : (result){0};
     result mg = in_child(L, 2);
+    result hy = gm_hypre_available() ? in_child(L, 3) : (result){0};
     last_refine = mv.refine_s, last_build = mv.build_s;
     if (!mv.ok || !mg.ok) {
       fprintf(stderr, "level %zu failed\n", L);
@@ -205,9 +213,12 @@ int main(int argc, char **argv) {
     }
     const double chol_x = ch.ok ? (ch.factor_s + ch.solve_s) / mv.matvec_s : NAN;
     const double mg_x = (mg.factor_s + mg.solve_s) / mv.matvec_s;
-    printf("%5zu %9zu %9zu %10.3e | %9.3f %9.3f %8.0f %7.0f | %9.3f %9.3f %8.1f %4zu %7.0f\n",
+    const double hy_x = hy.ok ? (hy.factor_s + hy.solve_s) / mv.matvec_s : NAN;
+    printf("%5zu %9zu %9zu %10.3e | %9.3f %9.3f %8.0f %7.0f | %9.3f %9.3f %8.1f %4zu %7.0f | %9.3f "
+           "%9.3f %8.1f %4zu %7.0f\n",
            L, mg.cells, mg.unknowns, mv.matvec_s, ch.factor_s, ch.solve_s, chol_x, ch.peak_mb,
-           mg.factor_s, mg.solve_s, mg_x, mg.iterations, mg.peak_mb);
+           mg.factor_s, mg.solve_s, mg_x, mg.iterations, mg.peak_mb, hy.factor_s, hy.solve_s,
+           hy_x, hy.iterations, hy.peak_mb);
     if (f)
       fprintf(f,
               "    {\"level\": %zu, \"tets\": %zu, \"unknowns\": %zu, \"nnz\": %zu, "
@@ -215,10 +226,14 @@ int main(int argc, char **argv) {
               "\"cholmod_factor_s\": %.4f, \"cholmod_solve_s\": %.4f, \"cholmod_matvecs\": %.1f, "
               "\"cholmod_peak_mb\": %.0f, \"mg_hierarchy_s\": %.4f, "
               "\"mg_cg_s\": %.4f, \"mg_matvecs\": %.1f, \"mg_iterations\": %zu, "
-              "\"mg_peak_mb\": %.0f}%s\n",
+              "\"mg_peak_mb\": %.0f, \"hypre_ok\": %s, \"hypre_setup_s\": %.4f, "
+              "\"hypre_cg_s\": %.4f, \"hypre_matvecs\": %.1f, \"hypre_iterations\": %zu, "
+              "\"hypre_peak_mb\": %.0f}%s\n",
               L, mg.cells, mg.unknowns, mv.nnz, mv.matvec_s, ch.ok ? "true" : "false",
               ch.factor_s, ch.solve_s, ch.ok ? chol_x : -1.0, ch.peak_mb,
-              mg.factor_s, mg.solve_s, mg_x, mg.iterations, mg.peak_mb, L == finest ? "" : ",");
+              mg.factor_s, mg.solve_s, mg_x, mg.iterations, mg.peak_mb, hy.ok ? "true" : "false",
+              hy.factor_s, hy.solve_s, hy.ok ? hy_x : -1.0, hy.iterations, hy.peak_mb,
+              L == finest ? "" : ",");
   }
   if (f) bench_close_json(f);
   printf("refinement of the finest level: %.3f s CPU, %.2f x the DEC build (complex + geometry, "

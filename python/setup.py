@@ -63,6 +63,11 @@ if cmake_option(build, "GM_SANITIZE") == "ON":
 
 libs = pkg_libs("lapacke", "libcjson", "harminv", "fftw3", "hdf5") + \
     ["-lcholmod", "-lumfpack", "-lsuitesparseconfig", "-fopenmp", "-lm"]
+# hypre (src/dec/hypre.c, reached through gm_mesh_poisson_solve) and the MPI it is built with,
+# when the CMake build found them.
+hypre, mpi = cmake_option(build, "HYPRE_LIB"), cmake_option(build, "MPI_mpi_LIBRARY")
+if hypre and not hypre.endswith("NOTFOUND") and cmake_option(build, "GM_MPI") == "ON" and mpi:
+    libs += [hypre, mpi]
 
 core = Extension(
     "geomint._core",

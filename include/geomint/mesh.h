@@ -183,25 +183,36 @@ typedef struct gm_poisson_report {
   double error_l2;               /* (Σ ⋆_0 (u_h − u)²)^{1/2} */
   double solution_max;           /* max |u| */
   size_t n_cells;                /* of the mesh solved on (after refinement) */
-  size_t iterations;             /* CG iterations (multigrid; 0 for CHOLMOD) */
+  size_t iterations;             /* CG iterations (multigrid, hypre; 0 for CHOLMOD) */
   double relative_residual;      /* ‖b − A u‖ / ‖b‖ of the interior system */
   double contraction;            /* V-cycle contraction factor, when measured (else 0) */
+  int solver;                    /* the gm_poisson_solver that ran (GM_POISSON_AUTO resolved) */
   double setup_s;                /* wall seconds: refinement, complex, geometry, assembly */
-  double factor_s;               /* CHOLMOD analyse + factor, or the multigrid hierarchy */
+  double factor_s;               /* CHOLMOD analyse + factor, the multigrid hierarchy, or
+                                    hypre's setup */
   double solve_s;                /* triangular solves, or preconditioned CG */
 } gm_poisson_report;
 
 typedef enum {
   GM_POISSON_CHOLMOD = 0,  /* sparse Cholesky of the interior system */
-  GM_POISSON_MULTIGRID = 1 /* CG preconditioned by a geometric V-cycle (geomint/multigrid.h) on
+  GM_POISSON_MULTIGRID = 1, /* CG preconditioned by a geometric V-cycle (geomint/multigrid.h) on
                               the hierarchy input mesh → `levels` red refinements */
+  GM_POISSON_HYPRE = 2,     /* CG preconditioned by hypre's BoomerAMG (gm_hypre_boomeramg_pcg) */
+  GM_POISSON_AUTO = 3       /* the default: chosen by measurement (docs/dec.md, "Which solver"):
+                               multigrid when levels >= 1 (a hierarchy exists); otherwise CHOLMOD
+                               below GM_POISSON_HYPRE_MIN_UNKNOWNS interior unknowns, hypre (when
+                               built with it) from there on */
 } gm_poisson_solver;
 
+/* The size from which GM_POISSON_AUTO prefers hypre to CHOLMOD on an unrefined mesh: measured
+ * wall time of `geomint mesh poisson` (MPI start-up included) in docs/dec.md, "Which solver". */
+#define GM_POISSON_HYPRE_MIN_UNKNOWNS 10000
+
 typedef struct gm_poisson_options {
-  gm_poisson_solver solver; /* default CHOLMOD */
+  gm_poisson_solver solver; /* default GM_POISSON_AUTO */
   size_t levels;            /* red refinements of the input before solving (default 0; the
                                multigrid needs >= 1: the input is its coarsest level) */
-  double rtol;              /* multigrid: relative residual (default 1e-10) */
+  double rtol;              /* multigrid, hypre: relative residual (default 1e-10) */
   size_t pre_smooth, post_smooth; /* multigrid: Gauss–Seidel sweeps (default 2, 2) */
   size_t max_iterations;    /* multigrid: CG iterations (0: 200) */
   int measure_contraction;  /* multigrid: also measure the V-cycle's contraction factor */
@@ -219,12 +230,41 @@ gm_poisson_options gm_poisson_defaults(void);
 gm_status gm_mesh_poisson(const gm_mesh *mesh, gm_poisson_report *report, double *u_out,
                           gm_error *err);
 /* The same check after options->levels red refinements of mesh (gm_mesh_refine), solved by the
- * chosen solver (options NULL: defaults, i.e. gm_mesh_poisson). *u_out (may be NULL) receives
+ * chosen solver (options NULL: defaults, GM_POISSON_AUTO). *u_out (may be NULL) receives
  * the vertex values on the refined mesh (report->n_vertices, owned by the caller). Errors as
  * gm_mesh_poisson; GM_ENOMEM naming the bytes when the refined mesh would exceed
  * options->max_bytes; GM_ENOCONV when CG does not reach rtol. */
 gm_status gm_mesh_poisson_solve(const gm_mesh *mesh, const gm_poisson_options *options,
                                 gm_poisson_report *report, double **u_out, gm_error *err);
+
+/* ---- curl–curl check (1-forms) ------------------------------------------------------------- */
+
+typedef enum {
+  GM_CURLCURL_CHOLMOD = 0, /* sparse Cholesky of the interior edge system */
+  GM_CURLCURL_HYPRE = 1    /* CG preconditioned by hypre's AMS (gm_hypre_ams_pcg) */
+} gm_curlcurl_solver;
+
+typedef struct gm_curlcurl_report {
+  size_t n_edges, n_unknowns, n_cells; /* all edges; interior ones; tetrahedra */
+  double h;                            /* longest edge */
+  double error_max;                    /* max over edges |e_h − ∫_e E·dl| / |e| */
+  double solution_max;                 /* max over edges |∫_e E·dl| / |e| */
+  size_t iterations;                   /* CG iterations (hypre; 0 for CHOLMOD) */
+  double relative_residual;            /* ‖b − A e‖ / ‖b‖ of the interior system */
+  double factor_s, solve_s;            /* CHOLMOD factor / solve, or hypre setup / CG (s) */
+} gm_curlcurl_report;
+
+/* The 1-form problem curl curl E + E = f on a tetrahedral mesh in R³ (bounding box lo + [0, L])
+ * with the tangential trace of E given on the boundary (E × n = 0 on the box's faces):
+ * manufactured E = (sin πy' sin πz', sin πz' sin πx', sin πx' sin πy'), x' = (x − lo)/L, so
+ * div E = 0, curl curl E = −ΔE and f_c = (1 + π²/L_a² + π²/L_b²) E_c (a, b the other axes).
+ * Discretised as (d_1ᵀ ⋆_2 d_1 + ⋆_1) e = ⋆_1 f_e on the interior edges (e, f_e: edge integrals
+ * of E and f by 3-point Gauss), the boundary edges keeping the exact integrals of E. rtol: the
+ * hypre solver's relative residual; e_out (n_edges values, may be NULL): the solution.
+ * Errors: GM_EUNSUPPORTED unless the mesh is tetrahedral in R³; GM_ESINGULAR for a
+ * non-positive ⋆_1 on an interior edge; those of the complex, geometry and solver. */
+gm_status gm_mesh_curlcurl_solve(const gm_mesh *mesh, gm_curlcurl_solver solver, double rtol,
+                                 gm_curlcurl_report *report, double **e_out, gm_error *err);
 
 #ifdef __cplusplus
 }

@@ -78,7 +78,7 @@ typedef struct gm_well_centredness {
 
 gm_status gm_refinement_well_centredness(const gm_refinement *r, gm_well_centredness *wc);
 
-/* ---- unrelated triangle meshes of one domain (2-D) ---------------------------------------- */
+/* ---- unrelated meshes of one domain: triangles (2-D), tetrahedra (3-D, top forms) ---------- */
 
 typedef struct gm_transfer_report {
   double volume_from, volume_to; /* areas of the two domains (Σ |T|) */
@@ -95,8 +95,11 @@ typedef struct gm_transfer_report {
  *          circumcentric dual cell on well-centred meshes), applied to the densities: (Tf)(w) =
  *          Σ_v |V_w ∩ V_v| f(v) / Σ_v |V_w ∩ V_v|: constants are kept exactly, the integral
  *          Σ |V_v| f(v) to round-off.
+ * Tetrahedral meshes in R³ (n = N = 3): k = 3 only, T[τ, σ] = |τ ∩ σ| / Σ_τ' |τ' ∩ σ| as for
+ * k = 2, the intersections by clipping σ with τ's four half-spaces (src/dec/transfer_clip3.c).
  * Errors: GM_EINVAL when the domains differ: |from|, |to| and their overlap are compared and
- * a difference above 1e-10 relative is refused with the three areas in the message. */
+ * a difference above 1e-10 relative is refused with the three areas (volumes) in the message;
+ * GM_EUNSUPPORTED for other dimensions or degrees. */
 gm_status gm_dec_transfer(const gm_complex *from, const gm_complex *to, size_t k, gm_csr **out,
                           gm_transfer_report *report, gm_error *err);
 
@@ -124,11 +127,14 @@ gm_multigrid_options gm_multigrid_defaults(void);
 typedef struct gm_multigrid gm_multigrid;
 
 /* A hierarchy of n_levels = n_prolongations + 1 levels, level 0 the finest with the symmetric
- * positive definite matrix A (copied); P[l] (n_l × n_{l+1}, copied) prolongs level l+1 to level
- * l. The coarse operators are Galerkin products A_{l+1} = P[l]ᵀ A_l P[l]; the coarsest level is
- * factored by CHOLMOD. All work arrays are allocated here. Errors: GM_EINVAL for shapes that do
- * not chain, GM_ESINGULAR when a diagonal entry is not positive or the coarsest matrix is not
- * positive definite. */
+ * positive definite matrix A (borrowed: it must outlive the object; CG's products use it);
+ * P[l] (n_l × n_{l+1}, copied) prolongs level l+1 to level l. The coarse operators are Galerkin
+ * products A_{l+1} = P[l]ᵀ A_l P[l]; the coarsest level is factored by CHOLMOD. The smoothing
+ * levels keep their operators and prolongations with 32-bit columns and float values (the
+ * arithmetic is double; src/dec/multigrid.c says why). All work arrays are allocated here.
+ * Errors: GM_EINVAL for shapes that do not chain, GM_ESINGULAR when a diagonal entry is not
+ * positive or the coarsest matrix is not positive definite, GM_EUNSUPPORTED above 2^32 − 1
+ * unknowns. */
 gm_status gm_multigrid_create(const gm_csr *A, size_t n_prolongations, const gm_csr *const *P,
                               const gm_multigrid_options *options, gm_multigrid **out,
                               gm_error *err);
@@ -149,6 +155,36 @@ gm_status gm_multigrid_pcg(gm_multigrid *mg, const double *b, double *x, size_t 
  * deterministic pseudo-random e_0 (the asymptotic rate). */
 double gm_multigrid_contraction(gm_multigrid *mg, size_t cycles);
 const char *gm_multigrid_errmsg(const gm_multigrid *mg);
+
+/* ---- algebraic multigrid through hypre (optional: Debian libhypre-dev) -------------------- */
+
+/* Conjugate gradients preconditioned by one cycle of hypre's BoomerAMG (classical AMG, HMIS
+ * coarsening, extended+i interpolation, l1-Gauss–Seidel smoothing: the settings hypre's manual
+ * recommends for 3-D problems) or AMS (the auxiliary-space Maxwell solver of Hiptmair and Xu,
+ * SIAM J. Numer. Anal. 45 (2007) 2483–2509; Kolev and Vassilevski, J. Comput. Math. 27 (2009)
+ * 604–623), both run on one process (MPI_COMM_SELF; MPI is initialised here when the caller has
+ * not). The report gives the setup and solve seconds (thread CPU time: hypre runs on this
+ * thread), the CG iterations and the final relative residual ‖b − Ax‖/‖b‖ (recomputed here with
+ * gm_csr_matvec, not hypre's own). Built without hypre, every call returns GM_EUNSUPPORTED
+ * saying so. */
+typedef struct gm_hypre_report {
+  size_t iterations;
+  double relative_residual;
+  double setup_s, solve_s;
+} gm_hypre_report;
+
+/* 1 when geomint was built with hypre. */
+int gm_hypre_available(void);
+/* A x = b for a symmetric positive definite A (a 0-form Laplacian), from the guess in x. */
+gm_status gm_hypre_boomeramg_pcg(const gm_csr *A, const double *b, double *x, double rtol,
+                                 size_t max_iterations, gm_hypre_report *report, gm_error *err);
+/* A x = b for an edge (1-form) system A = d_1ᵀ ⋆_2 d_1 + ⋆_1 (curl–curl plus a positive mass
+ * term) in 3-D: G is the discrete gradient d_0 on the same edges (rows = A's unknowns, columns =
+ * the vertices whose gradients lie in the space, e.g. interior edges × interior vertices for a
+ * Dirichlet problem) and xyz the coordinates of those vertices (3 per column of G). */
+gm_status gm_hypre_ams_pcg(const gm_csr *A, const gm_csr *G, const double *xyz, const double *b,
+                           double *x, double rtol, size_t max_iterations, gm_hypre_report *report,
+                           gm_error *err);
 
 #ifdef __cplusplus
 }

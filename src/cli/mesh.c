@@ -12,7 +12,8 @@
 
 static const char usage[] =
     "usage: geomint mesh info FILE [--json]\n"
-    "       geomint mesh poisson FILE [--out FILE.vtu] [--solver cholmod|mg] [--refine L] [--json]\n"
+    "       geomint mesh poisson FILE [--out FILE.vtu] [--solver cholmod|mg|hypre] [--refine L]\n"
+    "                            [--json]\n"
     "       geomint mesh poisson --levels L [--dim 2|3] [--n0 N] [--json]\n"
     "       geomint mesh refine FILE --levels L [--out FILE.msh] [--max-memory SIZE] [--json]\n"
     "       geomint mesh transfer A B [--json]\n\n"
@@ -37,8 +38,11 @@ static const char usage[] =
     "  --json       print one JSON object\n"
     "  --out FILE   (poisson) write the mesh with u_h, u and the error to a .vtu file;\n"
     "               (refine) write the finest mesh as .msh\n"
-    "  --solver S   (poisson FILE) cholmod (default) or mg: CG preconditioned by a geometric\n"
-    "               multigrid V-cycle on the hierarchy FILE -> --refine L refinements (L >= 1)\n"
+    "  --solver S   (poisson FILE) cholmod, mg: CG preconditioned by a geometric\n"
+    "               multigrid V-cycle on the hierarchy FILE -> --refine L refinements (L >= 1),\n"
+    "               or hypre: CG preconditioned by BoomerAMG (needs a build with libhypre-dev);\n"
+    "               default: mg with --refine, else cholmod below 10000 unknowns, else hypre\n"
+    "               (the measurement behind it: docs/dec.md, 'Which solver')\n"
     "  --refine L   (poisson FILE) solve on the mesh refined L times (default 0)\n"
     "  --max-memory SIZE  (refine, poisson) refuse a refinement whose mesh needs more (suffix\n"
     "               K, M, G; default: the physical memory)\n"
@@ -215,12 +219,16 @@ static int mesh_poisson(const char *path, const char *out, const gm_poisson_opti
   printf("poisson on %s: -Δu = f, u = Π sin(π(x_i − lo_i)/L_i + 1/4), Dirichlet boundary\n", path);
   if (opt->levels > 0) printf("  %-24s %zu (%zu cells)\n", "refinements", opt->levels, rep.n_cells);
   printf("  %-24s %zu (%zu unknowns)\n", "vertices", rep.n_vertices, rep.n_unknowns);
-  if (opt->solver == GM_POISSON_MULTIGRID) {
+  if (rep.solver == GM_POISSON_MULTIGRID) {
     printf("  %-24s mg: CG + V(%zu,%zu) Gauss-Seidel, %zu levels\n", "solver", opt->pre_smooth,
            opt->post_smooth, opt->levels + 1);
     printf("  %-24s %zu (relative residual %.3e)\n", "CG iterations", rep.iterations,
            rep.relative_residual);
     printf("  %-24s %.4f\n", "V-cycle contraction", rep.contraction);
+  } else if (rep.solver == GM_POISSON_HYPRE) {
+    printf("  %-24s hypre: CG + BoomerAMG\n", "solver");
+    printf("  %-24s %zu (relative residual %.3e)\n", "CG iterations", rep.iterations,
+           rep.relative_residual);
   } else {
     printf("  %-24s cholmod (relative residual %.3e)\n", "solver", rep.relative_residual);
   }
@@ -277,11 +285,14 @@ static int mesh_poisson(const char *path, const char *out, const gm_poisson_opti
     cJSON_AddNumberToObject(o, "cells", (double)rep.n_cells);
     cJSON_AddNumberToObject(o, "vertices", (double)rep.n_vertices);
     cJSON_AddNumberToObject(o, "unknowns", (double)rep.n_unknowns);
-    cJSON_AddStringToObject(o, "solver", opt->solver == GM_POISSON_MULTIGRID ? "mg" : "cholmod");
-    if (opt->solver == GM_POISSON_MULTIGRID) {
+    /* the solver that ran (the default picks one by size: rep.solver) */
+    cJSON_AddStringToObject(o, "solver", rep.solver == GM_POISSON_MULTIGRID ? "mg"
+                                         : rep.solver == GM_POISSON_HYPRE   ? "hypre"
+                                                                            : "cholmod");
+    if (rep.solver != GM_POISSON_CHOLMOD)
       cJSON_AddNumberToObject(o, "cg_iterations", (double)rep.iterations);
+    if (rep.solver == GM_POISSON_MULTIGRID)
       cJSON_AddItemToObject(o, "contraction", cli_json_number(rep.contraction));
-    }
     cJSON_AddItemToObject(o, "relative_residual", cli_json_number(rep.relative_residual));
     cJSON_AddNumberToObject(o, "setup_s", rep.setup_s);
     cJSON_AddNumberToObject(o, "factor_s", rep.factor_s);
@@ -475,7 +486,7 @@ static int mesh_main(int argc, char **argv) {
     if (solver != NULL) {
       int sv = cli_mesh_solver(solver);
       if (sv < 0) {
-        cli_error("mesh", "--solver %s: use cholmod or mg", solver);
+        cli_error("mesh", "--solver %s: use cholmod, mg or hypre", solver);
         return CLI_EXIT_USAGE;
       }
       opt.solver = (gm_poisson_solver)sv;
@@ -495,7 +506,7 @@ static int mesh_main(int argc, char **argv) {
     }
     opt.levels = refine;
     opt.max_bytes = max_memory_bytes;
-    opt.measure_contraction = opt.solver == GM_POISSON_MULTIGRID;
+    opt.measure_contraction = opt.solver == GM_POISSON_MULTIGRID || opt.solver == GM_POISSON_AUTO;
     return mesh_poisson(pos[1], out, &opt, json);
   }
   cli_error("mesh", "unknown subcommand '%s': use info, poisson, refine or transfer", pos[0]);

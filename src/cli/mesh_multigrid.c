@@ -21,6 +21,7 @@ static double now(void) {
 int cli_mesh_solver(const char *name) {
   if (strcmp(name, "cholmod") == 0) return GM_POISSON_CHOLMOD;
   if (strcmp(name, "mg") == 0) return GM_POISSON_MULTIGRID;
+  if (strcmp(name, "hypre") == 0) return GM_POISSON_HYPRE;
   return -1;
 }
 

@@ -69,4 +69,10 @@ size_t gm_local_face(const gm_complex *cx, size_t d, size_t s, unsigned mask);
 /* Orientation sign of simplex i of dimension k: +1 for k < n, orient[i] for k == n. */
 int gm_simplex_sign(const gm_complex *cx, size_t k, size_t i);
 
+/* The clipping transfer of top forms between tetrahedral meshes in R³ (transfer_clip3.c), for
+ * gm_dec_transfer with n = N = 3, k = 3. */
+struct gm_transfer_report;
+gm_status dec_transfer_tets(const gm_complex *from, const gm_complex *to, gm_csr **out,
+                            struct gm_transfer_report *report, gm_error *err);
+
 #endif

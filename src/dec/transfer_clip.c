@@ -139,10 +139,18 @@ gm_status gm_dec_transfer(const gm_complex *from, const gm_complex *to, size_t k
   if (from == NULL || to == NULL || out == NULL)
     return gm_error_set(err, GM_EINVAL, "NULL argument");
   *out = NULL;
+  if (from->n == 3 && from->N == 3 && to->n == 3 && to->N == 3) {
+    if (k != 3)
+      return gm_error_set(err, GM_EUNSUPPORTED,
+                          "the tetrahedral clipping transfer carries top (3-)forms, not %zu-forms",
+                          k);
+    return dec_transfer_tets(from, to, out, report, err);
+  }
   if (from->n != 2 || from->N != 2 || to->n != 2 || to->N != 2)
     return gm_error_set(err, GM_EUNSUPPORTED,
-                        "the clipping transfer is for triangle meshes of the plane (dim 2 in R^2), "
-                        "not dim %zu in R^%zu to dim %zu in R^%zu",
+                        "the clipping transfer is for triangle meshes of the plane (dim 2 in R^2) "
+                        "or tetrahedral meshes of space (dim 3 in R^3), not dim %zu in R^%zu to "
+                        "dim %zu in R^%zu",
                         from->n, from->N, to->n, to->N);
   if (k != 0 && k != 2)
     return gm_error_set(err, GM_EUNSUPPORTED,

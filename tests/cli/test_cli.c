@@ -362,7 +362,7 @@ static int loaded(const char *err, const char *lib) {
 
 Test(cli, run_loads_heavy_libraries_on_use) {
   static const char *const heavy[] = {"liblapacke", "libopenblas", "libcholmod", "libumfpack",
-                                      "libfftw3", "libharminv", "libhdf5"};
+                                      "libfftw3", "libharminv", "libhdf5", "libHYPRE"};
   run_output r = run_env("LD_DEBUG=libs", "run kepler --steps 1 --quiet");
   cr_assert_eq(r.status, 0, "%s", r.err);
   for (size_t k = 0; k < sizeof heavy / sizeof heavy[0]; ++k)
