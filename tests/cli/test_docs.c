@@ -1,10 +1,13 @@
 /* The documentation tells the truth: the tables in README.md and docs/ are what the program
  * generates from the registries, the README's C example is the compiled example, and that
- * example runs and prints a small energy error; and every code block of a page in docs/ marked
- * <!-- quick-check --> is re-run: each of its `$ geomint ...` commands runs, and every other
- * line of the block (but "...") is a line of their output, token by token, where a `~` in the
- * doc stands for a token that is not compared (a timing, given with its date and load in the
- * text next to the block). */
+ * example runs and prints a small energy error; every code block of a page in docs/ marked
+ * <!-- quick-check --> is re-run: each of its `$ geomint ...` commands runs (in the source
+ * directory), and every other line of the block (but "...") is a line of their output, token by
+ * token, where a `~` in the doc stands for a token that is not compared (a timing, given with its
+ * date and load in the text next to the block) and a last token `...` for the rest of the line;
+ * and every <!-- output quick-check: CMD --> region of README.md and docs/ is CMD's output, line
+ * for line. scripts/update-docs regenerates all of these, and the <!-- output: CMD --> regions
+ * whose commands take longer than the test's budget (scripts/docs_regen.py). */
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <stdlib.h>
