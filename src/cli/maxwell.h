@@ -15,6 +15,8 @@ const char *mx_usage(void);
 /* Create directory dir when missing (its parent must exist); an exit status, the reason
  * printed on failure. */
 int mx_make_dir(const char *command, const char *dir);
+/* The same for the folder an option other than --out names (the message names that option). */
+int mx_make_option_dir(const char *command, const char *option, const char *dir);
 /* dir/name into buf. */
 const char *mx_path(char *buf, size_t cap, const char *dir, const char *name);
 

@@ -482,7 +482,7 @@ int cli_maxwell_mesh(int argc, char **argv) {
     /* --vtu snap/s: the folder is made as `maxwell run --out` makes its own */
     char dir[4096];
     snprintf(dir, sizeof dir, "%.*s", (int)(strrchr(vtu, '/') - vtu), vtu);
-    if ((status = mx_make_dir("maxwell mesh", dir)) != CLI_EXIT_OK) goto done;
+    if ((status = mx_make_option_dir("maxwell mesh", "--vtu", dir)) != CLI_EXIT_OK) goto done;
   }
   if (energy_path && !(ef = fopen(energy_path, "w"))) {
     cli_error("maxwell mesh", "cannot write %s", energy_path);

@@ -387,7 +387,12 @@ int mx_run_main(int argc, char **argv) {
   gm_yee_writer *writer = NULL;
   char file[4096];
   if (status == CLI_EXIT_OK &&
-      (series_init(&r.energy, scene.energy_every > 0 ? steps / scene.energy_every + 1 : 0, 4) != 0 ||
+      /* samples at step 0, every energy_every steps, and the final step when off that grid */
+      (series_init(&r.energy,
+                   scene.energy_every > 0
+                       ? steps / scene.energy_every + 1 + (steps % scene.energy_every != 0)
+                       : 0,
+                   4) != 0 ||
        series_init(&r.flux, scene.n_fluxes > 0 ? steps : 0, scene.n_fluxes) != 0)) {
     cli_error(COMMAND, "out of memory");
     status = CLI_EXIT_FAILURE;

@@ -50,10 +50,14 @@ size_t mx_resonances(const double *signal, size_t n, double dt, double f_min, do
 }
 
 int mx_make_dir(const char *command, const char *dir) {
+  return mx_make_option_dir(command, "--out", dir);
+}
+
+int mx_make_option_dir(const char *command, const char *option, const char *dir) {
   struct stat sb;
   if (stat(dir, &sb) == 0) {
     if (S_ISDIR(sb.st_mode) && access(dir, W_OK) == 0) return CLI_EXIT_OK;
-    cli_error(command, "--out %s: not a writable directory", dir);
+    cli_error(command, "%s %s: not a writable directory", option, dir);
     return CLI_EXIT_FAILURE;
   }
   if (mkdir(dir, 0777) != 0) {

@@ -2,7 +2,6 @@
  * a generated rectangle), one condition per boundary group, ν, κ, ρ, dt, t_end, the initial
  * state by preset name and the outputs. Errors name the file and the JSON path. */
 #include <cjson/cJSON.h>
-#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -295,8 +294,9 @@ gm_status gm_fluid_case_parse(const char *text, const char *base_dir, gm_fluid_c
 gm_status gm_fluid_case_read(const char *path, gm_fluid_case **out, gm_error *err) {
   if (!path || !out) return gm_error_set(err, GM_EINVAL, "fluid case: NULL argument");
   *out = NULL;
-  FILE *f = fopen(path, "rb");
-  if (!f) return gm_error_set(err, GM_EIO, "%s: cannot open: %s", path, strerror(errno));
+  char why[GM_ERRMSG_SIZE];
+  FILE *f = gm_input_open(path, why, sizeof why); /* a directory or a FIFO says what it is */
+  if (!f) return gm_error_set(err, GM_EIO, "%s", why);
   const size_t cap = (size_t)1 << 24; /* 16 MiB: a case file is a few lines */
   char *text = malloc(cap + 1);
   if (!text) {

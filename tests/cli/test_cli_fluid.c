@@ -38,7 +38,12 @@ Test(cli_fluid, help_and_usage) {
   }
   r = run_cli("fluid run missing.json");
   cr_expect_eq(r.status, 2);
-  cr_expect(strstr(r.err, "missing.json: cannot open") != NULL, "%s", r.err);
+  cr_expect(strstr(r.err, "cannot open missing.json: No such file") != NULL, "%s", r.err);
+  run_output_free(&r);
+  /* the shared input opener (src/core/input_file.c) says what a non-file is */
+  r = run_cli("fluid run /tmp");
+  cr_expect_eq(r.status, 2);
+  cr_expect(strstr(r.err, "/tmp is a directory, not a file") != NULL, "%s", r.err);
   run_output_free(&r);
 }
 

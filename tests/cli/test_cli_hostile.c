@@ -179,13 +179,14 @@ Test(cli_hostile, docs_failure_example_is_the_program_output) {
   char path[512];
   snprintf(path, sizeof path, "%s/docs/cli.md", GM_SOURCE_DIR);
   char *doc = read_file(path);
-  const char *cmd = "$ geomint run kepler --method midpoint --set p2=0 --out fall.csv\n";
+  /* (test_docs.c re-runs it too; the CSV goes to /tmp, not into the source tree) */
+  const char *cmd = "$ geomint run kepler --method midpoint --set p2=0 --out /tmp/fall.csv\n";
   const char *at = strstr(doc, cmd);
   cr_assert_not_null(at, "docs/cli.md lost the failure example");
   at += strlen(cmd);
   const char *end = strchr(at, '\n');
   cr_assert_not_null(end);
-  run_output r = run_cli("run kepler --method midpoint --set p2=0 --out fall.csv");
+  run_output r = run_cli("run kepler --method midpoint --set p2=0 --out /tmp/fall.csv");
   cr_expect_eq(r.status, 1);
   cr_expect(strncmp(r.err, at, (size_t)(end - at)) == 0 && r.err[end - at] == '\n',
             "docs: %.*s\nprogram: %s", (int)(end - at), at, r.err);

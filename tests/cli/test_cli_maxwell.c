@@ -279,6 +279,24 @@ Test(cli_maxwell, run_writes_probes_energy_flux_and_snapshots) {
   run_output_free(&r);
 }
 
+/* 23 steps sampled every 5: steps 0, 5, ..., 20 and the final step 23 (which the energy series
+ * dropped when steps was not a multiple of energy_every: its buffer held steps / every + 1). */
+Test(cli_maxwell, run_energy_keeps_the_final_sample_off_the_grid) {
+  write_scene("e.json", "\"output\": {\"energy_every\": 5},", "{\"steps\": 23, \"courant\": 0.9}");
+  run_output r = run_cli("maxwell run e.json --out eo --json --threads 1");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  const double dt = json_number(o, "dt");
+  cJSON_Delete(o);
+  run_output_free(&r);
+  char *ecsv = read_file(path_in_tmp("eo/energy.csv"));
+  cr_expect_eq(count_lines(ecsv), 1 + 5 + 1, "header, steps 0, 5, 10, 15, 20 and 23:\n%s", ecsv);
+  const char *last = ecsv + strlen(ecsv) - 1; /* the newline that ends the file */
+  while (last > ecsv && last[-1] != '\n') --last;
+  cr_expect_float_eq(strtod(last, NULL), 23 * dt, 1e-12, "last row: %s", last);
+  free(ecsv);
+}
+
 /* A PEC cavity scene: the resonances harminv reports are the Yee frequencies of the modes. */
 Test(cli_maxwell, run_harminv_finds_the_cavity_modes) {
   write_text("cav.json",

@@ -121,6 +121,14 @@ Test(cli_maxwell_mesh, snapshots_and_pvd) {
   r = run_cli("maxwell mesh --rect 6 --vtu x --snapshots 0");
   cr_expect_eq(r.status, 2, "%s", r.err);
   run_output_free(&r);
+  /* a --vtu folder that is a file: the message names --vtu (it said --out) */
+  FILE *f = fopen(path_in_tmp("plain"), "w");
+  cr_assert_not_null(f);
+  fclose(f);
+  r = run_cli("maxwell mesh --rect 6 --t-end 0.1 --vtu plain/s");
+  cr_expect_eq(r.status, 1, "%s", r.err);
+  cr_expect(strstr(r.err, "--vtu plain: not a writable directory") != NULL, "%s", r.err);
+  run_output_free(&r);
 }
 
 /* Progress: the maxwell commands' line (step k / N, percentage, time left) on a terminal only,

@@ -1,15 +1,21 @@
 /* The documentation tells the truth: the tables in README.md and docs/ are what the program
  * generates from the registries, the README's C example is the compiled example, and that
- * example runs and prints a small energy error; and every code block of a page in docs/ marked
- * <!-- quick-check --> is re-run: each of its `$ geomint ...` commands runs, and every other
- * line of the block (but "...") is a line of their output, token by token, where a `~` in the
- * doc stands for a token that is not compared (a timing, given with its date and load in the
- * text next to the block). */
+ * example runs and prints a small energy error; every code block of a page in docs/ marked
+ * <!-- quick-check --> is re-run: each of its `$ geomint ...` commands runs (in the source
+ * directory), and every other line of the block (but "...") is a line of their output, token by
+ * token, where a `~` in the doc stands for a token that is not compared (a timing, given with its
+ * date and load in the text next to the block) and a last token `...` for the rest of the line;
+ * and every <!-- output quick-check: CMD --> region of README.md and docs/ is CMD's output, line
+ * for line. scripts/update-docs regenerates all of these, and the <!-- output: CMD --> regions
+ * whose commands take longer than the test's budget (scripts/docs_regen.py). */
 #include <criterion/criterion.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <dirent.h>
+
+/* how many <!-- output quick-check: --> regions the pages hold at least (a lost marker fails) */
+#define REGIONS_AT_LEAST 12
 
 static char *read_all(FILE *f) {
   size_t cap = 1 << 16, len = 0;
@@ -87,11 +93,13 @@ Test(docs, readme_example_is_the_compiled_example_and_runs) {
 
 /* ---- quick examples re-run ------------------------------------------------------------- */
 
-/* Does the doc line equal the output line token by token (`~` matches any token)? */
+/* Does the doc line equal the output line token by token (`~` matches any token; a last token
+ * `...` the rest of the line)? */
 static int tokens_match(const char *doc, const char *out) {
   for (;;) {
     while (*doc == ' ' || *doc == '\t') ++doc;
     while (*out == ' ' || *out == '\t') ++out;
+    if (strcmp(doc, "...") == 0) return 1;
     if (*doc == '\0' || *out == '\0') return *doc == '\0' && *out == '\0';
     size_t nd = strcspn(doc, " \t"), no = strcspn(out, " \t");
     if (!(nd == 1 && doc[0] == '~') && (nd != no || strncmp(doc, out, nd) != 0)) return 0;
@@ -125,7 +133,7 @@ static size_t check_quick_blocks(const char *page) {
     char *end = strstr(body, "\n```");
     cr_assert_not_null(end, "%s: unterminated block", page);
     *end = '\0';
-    /* run the commands first, in the build directory's parent: their outputs together */
+    /* run the commands first, in the source directory: their outputs together */
     size_t cap = 1 << 20, len = 0;
     char *out = calloc(cap, 1);
     cr_assert_not_null(out);
@@ -134,7 +142,9 @@ static size_t check_quick_blocks(const char *page) {
       if (nl != NULL) *nl = '\0';
       if (strncmp(line, "$ geomint ", 10) == 0) {
         char command[2048];
-        snprintf(command, sizeof command, "cd /tmp && %s %s 2>&1", GM_CLI_PATH, line + 10);
+        /* an example may show an error: its message is compared, not the exit status */
+        snprintf(command, sizeof command, "cd %s && %s %s 2>&1 || true", GM_SOURCE_DIR, GM_CLI_PATH,
+                 line + 10);
         char *got = command_output(command);
         size_t n = strlen(got);
         cr_assert_lt(len + n + 1, cap, "%s: output too long", page);
@@ -164,6 +174,67 @@ static size_t check_quick_blocks(const char *page) {
   return checked;
 }
 
+/* Check every <!-- output quick-check: CMD --> ... <!-- end:output --> region of one page (see
+ * scripts/docs_regen.py): CMD, run by the shell in the source directory with the program's
+ * directory first on PATH, prints the region's lines, token by token (`~`: any token), no more
+ * and no fewer. Returns how many regions were checked. */
+static size_t check_output_regions(const char *page) {
+  char path[1024], bindir[1024];
+  snprintf(path, sizeof path, "%s/%s", GM_SOURCE_DIR, page);
+  snprintf(bindir, sizeof bindir, "%s", GM_CLI_PATH);
+  *strrchr(bindir, '/') = '\0';
+  char *text = read_file(path);
+  size_t checked = 0;
+  static const char mark[] = "<!-- output quick-check: ", close_mark[] = "<!-- end:output -->";
+  for (char *at = strstr(text, mark); at != NULL; at = strstr(at + 1, mark)) {
+    char *cmd = at + strlen(mark), *cmd_end = strstr(cmd, " -->\n");
+    cr_assert_not_null(cmd_end, "%s: unterminated output marker", page);
+    char *body = cmd_end + 5, *end = strstr(body, close_mark);
+    cr_assert_not_null(end, "%s: no %s after %.60s", page, close_mark, cmd);
+    char command[4096];
+    snprintf(command, sizeof command,
+             "cd '%s' && export PATH='%s':\"$PATH\" OPENBLAS_NUM_THREADS=1 && { %.*s; }",
+             GM_SOURCE_DIR, bindir, (int)(cmd_end - cmd), cmd);
+    char *out = command_output(command);
+    const char saved = *end;
+    *end = '\0';
+    char *d = body, *o = out;
+    for (size_t line = 1; *d != '\0' || *o != '\0'; ++line) {
+      char *dn = strchr(d, '\n'), *on = strchr(o, '\n');
+      cr_assert(dn != NULL && on != NULL, "%s: `%.*s`: the page shows %s lines than it prints "
+                "(line %zu); run scripts/update-docs", page, (int)(cmd_end - cmd), cmd,
+                dn == NULL ? "fewer" : "more", line);
+      *dn = *on = '\0';
+      cr_expect(tokens_match(d, o), "%s: `%.*s` line %zu: the page says\n%s\nthe program prints\n%s\n"
+                "(run scripts/update-docs)", page, (int)(cmd_end - cmd), cmd, line, d, o);
+      *dn = *on = '\n';
+      d = dn + 1, o = on + 1;
+    }
+    *end = saved;
+    free(out);
+    ++checked;
+  }
+  free(text);
+  return checked;
+}
+
+Test(docs, output_regions_are_what_the_program_prints, .timeout = 300) {
+  size_t regions = check_output_regions("README.md");
+  DIR *d = opendir(GM_SOURCE_DIR "/docs");
+  cr_assert_not_null(d);
+  struct dirent *e;
+  while ((e = readdir(d)) != NULL) {
+    const size_t n = strlen(e->d_name);
+    if (n > 3 && strcmp(e->d_name + n - 3, ".md") == 0) {
+      char page[300];
+      snprintf(page, sizeof page, "docs/%s", e->d_name);
+      regions += check_output_regions(page);
+    }
+  }
+  closedir(d);
+  cr_expect_geq(regions, REGIONS_AT_LEAST, "only %zu quick-check output regions", regions);
+}
+
 Test(docs, quick_examples_are_what_the_program_prints, .timeout = 300) {
   DIR *d = opendir(GM_SOURCE_DIR "/docs");
   cr_assert_not_null(d);
@@ -174,5 +245,5 @@ Test(docs, quick_examples_are_what_the_program_prints, .timeout = 300) {
     if (n > 3 && strcmp(e->d_name + n - 3, ".md") == 0) blocks += check_quick_blocks(e->d_name);
   }
   closedir(d);
-  cr_expect_geq(blocks, 3, "only %zu quick-check blocks in docs/", blocks); /* cli.md 2, pde.md 1 */
+  cr_expect_geq(blocks, 14, "only %zu quick-check blocks in docs/", blocks); /* a lost marker fails */
 }
