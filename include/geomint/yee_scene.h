@@ -36,6 +36,8 @@ typedef struct gm_yee_scene {
   gm_yee_grid grid;
   gm_yee_options options;
   gm_yee_materials *materials;    /* owned */
+  double unit_um;                 /* micrometres per length unit (key "unit_um", default 1): the
+                                     material library's frequencies depend on it */
   size_t n_points, n_planes;
   gm_point_source *points;        /* owned */
   gm_plane_wave *planes;          /* owned */

@@ -340,6 +340,94 @@ static int parse_grid(parser *p, const cJSON *root, gm_yee_scene *s) {
 
 static const char *const medium_keys[] = {"epsilon", "mu", "sigma"};
 
+/* One element of "poles": {"type": "drude"|"lorentz", "frequency", "gamma", "delta_epsilon"}. */
+static int parse_pole(parser *p, const cJSON *item, gm_pole *pole) {
+  static const char *const keys[] = {"type", "frequency", "gamma", "delta_epsilon", NULL};
+  const char *type = NULL;
+  *pole = (gm_pole){GM_POLE_DRUDE, 0.0, 0.0, 0.0};
+  if (check_keys(p, item, keys) != 0 || get_string(p, item, "type", 1, &type) != 0) return -1;
+  if (strcmp(type, "drude") == 0 || strcmp(type, "lorentz") == 0) {
+    pole->kind = type[0] == 'd' ? GM_POLE_DRUDE : GM_POLE_LORENTZ;
+  } else {
+    size_t o = push_key(p, "type");
+    int rc = fail(p, "expected \"drude\" or \"lorentz\", got \"%s\"", type);
+    pop(p, o);
+    return rc;
+  }
+  const int lorentz = pole->kind == GM_POLE_LORENTZ;
+  if (get_number(p, item, "frequency", 1, &pole->frequency) != 0 ||
+      get_number(p, item, "gamma", 0, &pole->gamma) < 0 ||
+      get_number(p, item, "delta_epsilon", lorentz, &pole->strength) < 0)
+    return -1;
+  if (!lorentz && member(item, "delta_epsilon") != NULL) {
+    size_t o = push_key(p, "delta_epsilon");
+    int rc = fail(p, "a Drude pole has no delta_epsilon (its strength is the plasma frequency)");
+    pop(p, o);
+    return rc;
+  }
+  return 0;
+}
+
+/* "library" (a metal of the material library, lengths in the scene's unit_um) and "poles" of
+ * obj: the poles the materials' pen gets for this medium (none when neither is given). */
+static int parse_poles(parser *p, const cJSON *obj, gm_yee_scene *s, gm_medium *m) {
+  gm_pole poles[GM_MATERIAL_MAX_POLES + 16];
+  size_t n = 0;
+  const char *lib = NULL;
+  int rc = get_string(p, obj, "library", 0, &lib);
+  if (rc < 0) return -1;
+  if (rc == 0) {
+    gm_error err = {{0}};
+    size_t o = push_key(p, "library");
+    const double eps = m->epsilon;
+    if (gm_material_find(lib, s->unit_um, m, poles, GM_MATERIAL_MAX_POLES, &n, &err) != GM_OK) {
+      rc = fail(p, "%s", err.message);
+      pop(p, o);
+      return rc;
+    }
+    pop(p, o);
+    if (member(obj, "epsilon") != NULL) m->epsilon = eps; /* an explicit ε∞ wins */
+  }
+  const cJSON *list;
+  rc = get_array(p, obj, "poles", &list);
+  if (rc < 0) return -1;
+  if (rc == 0) {
+    size_t old = push_key(p, "poles");
+    size_t k = 0;
+    const cJSON *item;
+    cJSON_ArrayForEach(item, list) {
+      size_t o = push_index(p, k);
+      if (n >= sizeof poles / sizeof poles[0])
+        rc = fail(p, "too many poles (at most %zu with the library's)", sizeof poles / sizeof poles[0]);
+      else if (!cJSON_IsObject(item))
+        rc = fail(p, "expected an object, got %s", type_name(item));
+      else
+        rc = parse_pole(p, item, &poles[n++]);
+      pop(p, o);
+      ++k;
+      if (rc != 0) break;
+    }
+    pop(p, old);
+    if (rc != 0) return -1;
+  }
+  gm_error err = {{0}};
+  if (gm_poles_check(n, poles, &err) != GM_OK) {
+    /* "poles[k].field: why": the library's poles come first, so k is the array index only when
+     * there is no library; name it as the path either way */
+    char key[64] = {0};
+    const char *colon = strstr(err.message, ": ");
+    const size_t len = colon ? (size_t)(colon - err.message) : 0;
+    if (len > 0 && len < sizeof key) memcpy(key, err.message, len);
+    size_t o = push_key(p, key[0] ? key : "poles");
+    rc = fail(p, "%s", colon ? colon + 2 : err.message);
+    pop(p, o);
+    return rc;
+  }
+  if (gm_yee_materials_set_poles(s->materials, n, poles) != GM_OK)
+    return fail(p, "%s", gm_yee_materials_errmsg(s->materials));
+  return 0;
+}
+
 /* epsilon, mu, sigma of obj over the defaults in m. */
 static int parse_medium(parser *p, const cJSON *obj, gm_medium *m) {
   double *v[3] = {&m->epsilon, &m->mu, &m->sigma};
@@ -386,9 +474,11 @@ static int parse_material(parser *p, const cJSON *item, size_t i, gm_yee_scene *
   gm_medium m = gm_medium_vacuum();
   int rc = get_string(p, item, "shape", 1, &shape) != 0 ? -1 : 0;
   if (rc == 0 && parse_medium(p, item, &m) != 0) rc = -1;
+  if (rc == 0 && parse_poles(p, item, s, &m) != 0) rc = -1;
   gm_status st = GM_OK;
   if (rc == 0 && strcmp(shape, "box") == 0) {
-    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "lo", "hi", NULL};
+    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "poles", "library",
+                                       "lo", "hi", NULL};
     double lo[3], hi[3];
     if (check_keys(p, item, keys) != 0 || get_vector(p, item, "lo", 1, axes, 3, 0, lo) != 0 ||
         get_vector(p, item, "hi", 1, axes, 3, 0, hi) != 0)
@@ -396,8 +486,8 @@ static int parse_material(parser *p, const cJSON *item, size_t i, gm_yee_scene *
     else
       st = gm_yee_paint_box(s->materials, lo, hi, &m);
   } else if (rc == 0 && strcmp(shape, "sphere") == 0) {
-    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "center", "radius",
-                                       NULL};
+    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "poles", "library",
+                                       "center", "radius", NULL};
     double c[3], r = 0;
     if (check_keys(p, item, keys) != 0 ||
         get_vector(p, item, "center", 1, axes, 3, 0, c) != 0 ||
@@ -406,8 +496,8 @@ static int parse_material(parser *p, const cJSON *item, size_t i, gm_yee_scene *
     else
       st = gm_yee_paint_sphere(s->materials, c, r, &m);
   } else if (rc == 0 && strcmp(shape, "cylinder") == 0) {
-    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "center", "axis",
-                                       "radius", "height", NULL};
+    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "poles", "library",
+                                       "center", "axis", "radius", "height", NULL};
     double c[3], ax[3] = {0, 0, 1}, r = 0, height = INFINITY;
     if (check_keys(p, item, keys) != 0 ||
         get_vector(p, item, "center", 1, axes, 3, 0, c) != 0 ||
@@ -428,6 +518,14 @@ static int parse_material(parser *p, const cJSON *item, size_t i, gm_yee_scene *
 
 static int parse_materials(parser *p, const cJSON *root, gm_yee_scene *s) {
   gm_error err = {{0}};
+  s->unit_um = 1.0;
+  if (get_number(p, root, "unit_um", 0, &s->unit_um) < 0) return -1;
+  if (!(s->unit_um > 0) || !isfinite(s->unit_um)) {
+    size_t o = push_key(p, "unit_um");
+    int rc = fail(p, "must be > 0 (micrometres per length unit), got %g", s->unit_um);
+    pop(p, o);
+    return rc;
+  }
   if (gm_yee_materials_create(&s->grid, &s->materials, &err) != GM_OK) return lib_fail(p, err.message);
   const cJSON *bg;
   int rc = get_object(p, root, "background", 0, &bg);
@@ -435,8 +533,11 @@ static int parse_materials(parser *p, const cJSON *root, gm_yee_scene *s) {
   if (rc == 0) {
     size_t old = push_key(p, "background");
     gm_medium m = gm_medium_vacuum();
-    static const char *const keys[] = {"epsilon", "mu", "sigma", NULL};
-    rc = check_keys(p, bg, keys) != 0 || parse_medium(p, bg, &m) != 0 ? -1 : 0;
+    static const char *const keys[] = {"epsilon", "mu", "sigma", "poles", "library", NULL};
+    rc = check_keys(p, bg, keys) != 0 || parse_medium(p, bg, &m) != 0 ||
+                 parse_poles(p, bg, s, &m) != 0
+             ? -1
+             : 0;
     if (rc == 0 && gm_yee_materials_fill(s->materials, &m) != GM_OK)
       rc = lib_fail(p, gm_yee_materials_errmsg(s->materials));
     pop(p, old);
@@ -950,7 +1051,7 @@ gm_status gm_yee_scene_parse(const char *text, const char *name, gm_yee_scene *s
   if (rc == 0) rc = check_duplicates(&p, root);
   static const char *const keys[] = {"grid", "background", "materials", "boundaries", "pml",
                                      "bloch_k", "sources", "probes", "flux", "output", "run",
-                                     "description", "eps_averaging", NULL};
+                                     "description", "eps_averaging", "unit_um", NULL};
   if (rc == 0) rc = check_keys(&p, root, keys);
   if (rc == 0) rc = parse_grid(&p, root, s);
   if (rc == 0) rc = parse_materials(&p, root, s);
