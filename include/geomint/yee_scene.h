@@ -59,6 +59,12 @@ typedef struct gm_yee_scene {
   size_t energy_every;            /* 0: no energy series */
   int harminv;                    /* resonances of the probe signals */
   double harminv_fmin, harminv_fmax, harminv_after;
+  /* output.harminv's other parameters (docs/maxwell.md): the basis size (0: harminv's
+   * default, 1.1 per Fourier bin of the band) and the filter on the modes it returns: error
+   * estimate below max_error (default 1e-4), |Q| above min_q (default 1), amplitude at least
+   * min_amplitude times the strongest (default 1e-6) */
+  size_t harminv_basis;
+  double harminv_max_error, harminv_min_q, harminv_min_amplitude;
 } gm_yee_scene;
 
 /* Read and check a scene file into *scene (which owns what it holds afterwards; release with

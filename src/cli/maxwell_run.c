@@ -477,9 +477,12 @@ int mx_run_main(int argc, char **argv) {
       gm_yee_probe_samples(solver, k, &n, &t, &re, &im);
       size_t first = 0;
       while (first < n && t[first] < scene.harminv_after) ++first;
-      pr[k].n_modes = mx_resonances(re + first, n - first, gm_yee_dt(solver), scene.harminv_fmin,
-                                    scene.harminv_fmax, pr[k].modes, MAX_MODES, pr[k].error,
-                                    sizeof pr[k].error);
+      const mx_harminv_params hp = {scene.harminv_basis, scene.harminv_max_error,
+                                    scene.harminv_min_q, scene.harminv_min_amplitude};
+      pr[k].n_modes = mx_resonances_with(re + first, n - first, gm_yee_dt(solver),
+                                         scene.harminv_fmin, scene.harminv_fmax, &hp,
+                                         pr[k].modes, MAX_MODES, pr[k].error,
+                                         sizeof pr[k].error);
     }
   if (status == CLI_EXIT_OK && pr != NULL && flux_integral != NULL) {
     size_t n_snap = gm_yee_writer_count(writer);

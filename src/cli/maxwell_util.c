@@ -40,11 +40,19 @@ void mx_progress_end(mx_progress *p) {
 
 size_t mx_resonances(const double *signal, size_t n, double dt, double f_min, double f_max,
                      gm_harminv_mode *modes, size_t cap, char *msg, size_t msg_cap) {
+  const mx_harminv_params def = {0, 1e-4, 1.0, 1e-6};
+  return mx_resonances_with(signal, n, dt, f_min, f_max, &def, modes, cap, msg, msg_cap);
+}
+
+size_t mx_resonances_with(const double *signal, size_t n, double dt, double f_min, double f_max,
+                          const mx_harminv_params *hp, gm_harminv_mode *modes, size_t cap,
+                          char *msg, size_t msg_cap) {
   gm_harminv_mode all[256];
   size_t n_all = 0;
   gm_error err = {{0}};
   msg[0] = '\0';
-  if (gm_harminv(n, signal, NULL, dt, f_min, f_max, 0, 256, all, &n_all, &err) != GM_OK) {
+  if (gm_harminv(n, signal, NULL, dt, f_min, f_max, hp->basis, 256, all, &n_all, &err) !=
+      GM_OK) {
     snprintf(msg, msg_cap, "%s", err.message);
     return 0;
   }
@@ -57,8 +65,8 @@ size_t mx_resonances(const double *signal, size_t n, double dt, double f_min, do
     if (isfinite(all[k].amplitude)) a_max = fmax(a_max, all[k].amplitude);
   size_t kept = 0;
   for (size_t k = 0; k < n_all && kept < cap; ++k)
-    if (all[k].error < 1e-4 && fabs(all[k].q) > 1 && isfinite(all[k].frequency) &&
-        all[k].amplitude > 1e-6 * a_max)
+    if (all[k].error < hp->max_error && fabs(all[k].q) > hp->min_q &&
+        isfinite(all[k].frequency) && all[k].amplitude >= hp->min_amplitude * a_max)
       modes[kept++] = all[k];
   return kept;
 }

@@ -915,14 +915,37 @@ static int parse_output(parser *p, const cJSON *root, gm_yee_scene *s) {
   const cJSON *hv;
   if (rc == 0 && (rc = get_object(p, obj, "harminv", 0, &hv)) == 0) {
     size_t o = push_key(p, "harminv");
-    static const char *const hkeys[] = {"f_min", "f_max", "after", NULL};
+    static const char *const hkeys[] = {"f_min", "f_max", "after", "basis", "max_error",
+                                        "min_q", "min_amplitude", NULL};
     s->harminv = 1;
+    s->harminv_max_error = 1e-4, s->harminv_min_q = 1.0, s->harminv_min_amplitude = 1e-6;
     if (check_keys(p, hv, hkeys) != 0 || get_number(p, hv, "f_min", 1, &s->harminv_fmin) != 0 ||
         get_number(p, hv, "f_max", 1, &s->harminv_fmax) != 0 ||
-        get_number(p, hv, "after", 0, &s->harminv_after) < 0)
+        get_number(p, hv, "after", 0, &s->harminv_after) < 0 ||
+        get_count(p, hv, "basis", 0, &s->harminv_basis) < 0 ||
+        get_number(p, hv, "max_error", 0, &s->harminv_max_error) < 0 ||
+        get_number(p, hv, "min_q", 0, &s->harminv_min_q) < 0 ||
+        get_number(p, hv, "min_amplitude", 0, &s->harminv_min_amplitude) < 0)
       rc = -1;
     if (rc == 0 && !(s->harminv_fmin >= 0 && s->harminv_fmax > s->harminv_fmin))
       rc = fail(p, "expected 0 <= f_min < f_max");
+    /* the basis is a dense complex eigenproblem of its size (harminv allocates a few basis²
+     * matrices): 1000 is 16 MB each */
+    const char *bad = NULL;
+    char why[96] = "";
+    if (rc == 0 && s->harminv_basis != 0 && (s->harminv_basis < 2 || s->harminv_basis > 1000))
+      bad = "basis", snprintf(why, sizeof why, "must be 0 (harminv's default) or 2 .. 1000");
+    else if (rc == 0 && !(s->harminv_max_error > 0 && s->harminv_max_error <= 1))
+      bad = "max_error", snprintf(why, sizeof why, "must be in (0, 1]");
+    else if (rc == 0 && !(s->harminv_min_q >= 0 && isfinite(s->harminv_min_q)))
+      bad = "min_q", snprintf(why, sizeof why, "must be >= 0 and finite");
+    else if (rc == 0 && !(s->harminv_min_amplitude >= 0 && s->harminv_min_amplitude < 1))
+      bad = "min_amplitude", snprintf(why, sizeof why, "must be in [0, 1) (relative to the strongest mode)");
+    if (bad != NULL) {
+      size_t o2 = push_key(p, bad);
+      rc = fail(p, "%s", why);
+      pop(p, o2);
+    }
     pop(p, o);
   } else if (rc == 1) {
     rc = 0;
@@ -1179,6 +1202,31 @@ gm_status gm_yee_scene_build(gm_yee_scene *s, const char *name, gm_yee **out,
     return GM_EINVAL;
   }
   const size_t steps = (size_t)wanted;
+  /* harminv's band and window against the run: its band must lie below the Nyquist frequency
+   * of the probe samples (one per step) and its window must hold samples */
+  if (s->harminv) {
+    const double nyquist = 0.5 / dt, t_end = (double)steps * dt;
+    if (s->harminv_fmax > nyquist) {
+      snprintf(msg, cap, "%s: output.harminv.f_max: %g is above the Nyquist frequency "
+               "1/(2 dt) = %g of the probe samples", name, s->harminv_fmax, nyquist);
+      gm_yee_free(solver);
+      return GM_EINVAL;
+    }
+    if (s->harminv_after >= t_end) {
+      snprintf(msg, cap, "%s: output.harminv.after: %g is at or beyond the end of the run "
+               "(t = %g, %s)", name, s->harminv_after, t_end, run_key);
+      gm_yee_free(solver);
+      return GM_EINVAL;
+    }
+    const double window = floor((t_end - s->harminv_after) / dt) + 1;
+    if (s->harminv_basis > 0 && (double)s->harminv_basis > window) {
+      snprintf(msg, cap, "%s: output.harminv.basis: %zu basis functions for about %.0f samples "
+               "after t = %g; at most one per sample", name, s->harminv_basis, window,
+               s->harminv_after);
+      gm_yee_free(solver);
+      return GM_EINVAL;
+    }
+  }
   {
     char what[160];
     snprintf(what, sizeof what, "the records of %zu steps (%zu probe%s%s%s)", steps,
