@@ -530,6 +530,16 @@ gm_status gm_yee_dft_flux_spectrum(const gm_yee_dft_flux *flux, double *spectrum
  * keep its flux object, run with it and subtract; −spectrum is the reflected flux. */
 gm_status gm_yee_dft_flux_subtract(gm_yee_dft_flux *flux, const gm_yee_dft_flux *incident);
 const char *gm_yee_dft_flux_errmsg(const gm_yee_dft_flux *flux);
+/* Normalisation runs through a file (text, exact to the bit): save the transforms of n flux
+ * objects; in a later run with the same planes, frequencies and step, subtract them plane by
+ * plane (as gm_yee_dft_flux_subtract) and, when incident is non-NULL, write the saved run's
+ * spectra there (n × n_freq, plane-major): T = spectrum/incident, R = −spectrum/incident.
+ * Errors: GM_EIO (file), GM_EINVAL (another number of planes, another plane, frequencies or
+ * point count; the message says which). */
+gm_status gm_yee_dft_flux_save(gm_yee_dft_flux *const *fluxes, size_t n, const char *path,
+                               gm_error *err);
+gm_status gm_yee_dft_flux_subtract_file(gm_yee_dft_flux *const *fluxes, size_t n,
+                                        const char *path, double *incident, gm_error *err);
 
 /* ---- Maxwell on simplicial meshes: DEC leapfrog and AVI (seed 000 §3.4.2–3.4.3) ----------- */
 

@@ -65,6 +65,15 @@ typedef struct gm_yee_scene {
    * min_amplitude times the strongest (default 1e-6) */
   size_t harminv_basis;
   double harminv_max_error, harminv_min_q, harminv_min_amplitude;
+  /* "dft": flux spectra of every flux plane at dft_n frequencies evenly in [dft_fmin, dft_fmax]
+   * (dft_n = 0: none), the normalisation file to write (dft_save) or to subtract
+   * (dft_subtract; paths as given, relative to the working directory; owned, may be NULL) */
+  size_t dft_n;
+  double dft_fmin, dft_fmax;
+  char *dft_save, *dft_subtract;
+  /* made by gm_yee_scene_build when dft_n > 0: one per flux plane (owned; observers of the
+   * solver built with them, so free the solver first or not advance it after the clear) */
+  gm_yee_dft_flux **dft;
 } gm_yee_scene;
 
 /* Read and check a scene file into *scene (which owns what it holds afterwards; release with

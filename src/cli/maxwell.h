@@ -53,6 +53,10 @@ void mx_progress_end(mx_progress *p);
 double mx_now(void);
 
 /* ---- plots ------------------------------------------------------------------------------ */
+/* The "dft" flux spectra of a finished run: normalisation file, flux_spectra.csv/.png in out_dir
+ * (maxwell_spectra.c). */
+struct gm_yee_scene;
+int mx_write_spectra(const char *out_dir, const struct gm_yee_scene *scene);
 typedef struct mx_line {
   const char *title;
   size_t n;

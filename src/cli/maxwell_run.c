@@ -469,6 +469,7 @@ int mx_run_main(int argc, char **argv) {
     if (field == NULL) field = gm_yee_dim_has(scene.grid.dim, GM_EZ) ? "Ez" : "Hz";
     status = plot_final(plot, field, path, &scene, solver);
   }
+  if (status == CLI_EXIT_OK) status = mx_write_spectra(out_dir, &scene);
   probe_result *pr = calloc(scene.n_probes + 1, sizeof *pr);
   if (status == CLI_EXIT_OK && scene.harminv && pr != NULL)
     for (size_t k = 0; k < scene.n_probes; ++k) {

@@ -854,6 +854,45 @@ static int parse_flux(parser *p, const cJSON *item, size_t i, gm_yee_scene *s) {
   return rc;
 }
 
+/* "dft": {"f_min", "f_max", "n", "save", "subtract"}: the flux planes' spectra. */
+static int parse_dft(parser *p, const cJSON *root, gm_yee_scene *s) {
+  const cJSON *obj;
+  int rc = get_object(p, root, "dft", 0, &obj);
+  if (rc != 0) return rc < 0 ? -1 : 0;
+  size_t old = push_key(p, "dft");
+  static const char *const keys[] = {"f_min", "f_max", "n", "save", "subtract", NULL};
+  const char *save = NULL, *sub = NULL;
+  rc = check_keys(p, obj, keys) != 0 || get_number(p, obj, "f_min", 1, &s->dft_fmin) != 0 ||
+               get_number(p, obj, "f_max", 1, &s->dft_fmax) != 0 ||
+               get_count(p, obj, "n", 1, &s->dft_n) != 0 ||
+               get_string(p, obj, "save", 0, &save) < 0 ||
+               get_string(p, obj, "subtract", 0, &sub) < 0
+           ? -1
+           : 0;
+  const char *bad = NULL;
+  char why[128] = "";
+  if (rc == 0 && !(s->dft_fmin >= 0))
+    bad = "f_min", snprintf(why, sizeof why, "must be >= 0, got %g", s->dft_fmin);
+  else if (rc == 0 && !(s->dft_fmax >= s->dft_fmin && isfinite(s->dft_fmax)))
+    bad = "f_max", snprintf(why, sizeof why, "must be >= f_min and finite, got %g", s->dft_fmax);
+  else if (rc == 0 && (s->dft_n == 0 || s->dft_n > 100000))
+    bad = "n", snprintf(why, sizeof why, "must be in 1 .. 100000 frequencies");
+  else if (rc == 0 && s->dft_n > 1 && s->dft_fmax == s->dft_fmin)
+    bad = "f_max", snprintf(why, sizeof why, "equals f_min with n > 1 frequencies");
+  else if (rc == 0 && s->n_fluxes == 0)
+    bad = "n", snprintf(why, sizeof why, "flux spectra need flux planes (\"flux\")");
+  if (bad != NULL) {
+    size_t o = push_key(p, bad);
+    rc = fail(p, "%s", why);
+    pop(p, o);
+  }
+  if (rc == 0 && save != NULL && (s->dft_save = strdup(save)) == NULL) rc = fail(p, "out of memory");
+  if (rc == 0 && sub != NULL && (s->dft_subtract = strdup(sub)) == NULL)
+    rc = fail(p, "out of memory");
+  pop(p, old);
+  return rc;
+}
+
 static int parse_fluxes(parser *p, const cJSON *root, gm_yee_scene *s) {
   const cJSON *list;
   int rc = get_array(p, root, "flux", &list);
@@ -1074,7 +1113,7 @@ gm_status gm_yee_scene_parse(const char *text, const char *name, gm_yee_scene *s
   if (rc == 0) rc = check_duplicates(&p, root);
   static const char *const keys[] = {"grid", "background", "materials", "boundaries", "pml",
                                      "bloch_k", "sources", "probes", "flux", "output", "run",
-                                     "description", "eps_averaging", "unit_um", NULL};
+                                     "description", "eps_averaging", "unit_um", "dft", NULL};
   if (rc == 0) rc = check_keys(&p, root, keys);
   if (rc == 0) rc = parse_grid(&p, root, s);
   if (rc == 0) rc = parse_materials(&p, root, s);
@@ -1086,6 +1125,7 @@ gm_status gm_yee_scene_parse(const char *text, const char *name, gm_yee_scene *s
   if (rc == 0) rc = parse_sources(&p, root, s);
   if (rc == 0) rc = parse_probes(&p, root, s);
   if (rc == 0) rc = parse_fluxes(&p, root, s);
+  if (rc == 0) rc = parse_dft(&p, root, s);
   if (rc == 0) rc = parse_output(&p, root, s);
   if (rc == 0) rc = parse_run(&p, root, s);
   if (rc == 0 && s->harminv && s->n_probes == 0) {
@@ -1154,6 +1194,10 @@ void gm_yee_scene_clear(gm_yee_scene *s) {
   free(s->oblique_json);
   free(s->probes);
   free(s->fluxes);
+  for (size_t k = 0; s->dft != NULL && k < s->n_fluxes; ++k) gm_yee_dft_flux_free(s->dft[k]);
+  free(s->dft);
+  free(s->dft_save);
+  free(s->dft_subtract);
   memset(s, 0, sizeof *s);
 }
 
@@ -1263,6 +1307,52 @@ gm_status gm_yee_scene_build(gm_yee_scene *s, const char *name, gm_yee **out,
       gm_yee_free(solver);
       return GM_EINVAL;
     }
+  /* a flux plane inside a CPML layer measures the stretched fields, not the physical flux */
+  for (size_t k = 0; k < s->n_fluxes; ++k) {
+    const int a = s->fluxes[k].axis;
+    const long m = (long)s->fluxes[k].index, n = (long)s->grid.n[a];
+    for (int f = 0; f < 2; ++f) {
+      const gm_yee_boundary *b = &s->options.boundary[2 * a + f];
+      if (b->kind == GM_BOUNDARY_CPML &&
+          (f == 0 ? m <= (long)b->pml.thickness : m >= n - (long)b->pml.thickness)) {
+        snprintf(msg, cap, "%s: flux[%zu].position: %g lies in the %s CPML layer (%zu cells); "
+                 "move the plane out of it", name, k, s->fluxes[k].position,
+                 f == 0 ? "lower" : "upper", b->pml.thickness);
+        gm_yee_free(solver);
+        return GM_EINVAL;
+      }
+    }
+  }
+  if (s->dft_n > 0) {
+    const double nyquist = 0.5 / dt;
+    if (!(s->dft_fmax < nyquist)) {
+      snprintf(msg, cap, "%s: dft.f_max: %g is at or above the Nyquist frequency 1/(2 dt) = %g",
+               name, s->dft_fmax, nyquist);
+      gm_yee_free(solver);
+      return GM_EINVAL;
+    }
+    double *freq = malloc(s->dft_n * sizeof *freq);
+    s->dft = calloc(s->n_fluxes, sizeof *s->dft);
+    if (freq == NULL || s->dft == NULL) {
+      free(freq);
+      snprintf(msg, cap, "%s: dft: out of memory", name);
+      gm_yee_free(solver);
+      return GM_ENOMEM;
+    }
+    for (size_t i = 0; i < s->dft_n; ++i)
+      freq[i] = s->dft_n == 1 ? s->dft_fmin
+                              : s->dft_fmin + (s->dft_fmax - s->dft_fmin) * (double)i /
+                                                  (double)(s->dft_n - 1);
+    for (size_t k = 0; k < s->n_fluxes; ++k)
+      if (gm_yee_dft_flux_create(solver, s->fluxes[k].axis, s->fluxes[k].index, s->dft_n, freq,
+                                 &s->dft[k]) != GM_OK) {
+        snprintf(msg, cap, "%s: flux[%zu]: %s", name, k, gm_yee_errmsg(solver));
+        free(freq);
+        gm_yee_free(solver);
+        return GM_EINVAL;
+      }
+    free(freq);
+  }
   *out = solver;
   return GM_OK;
 }
