@@ -51,6 +51,7 @@ static int observe_energy(void *ctx, const gm_yee *solver) {
   row[1] = e.magnetic;
   row[2] = e.plain;
   row[3] = e.leapfrog;
+  if (s->width > 4) row[4] = e.polarization; /* dispersive scenes: the poles' energy */
   s->n++;
   return 0;
 }
@@ -169,7 +170,8 @@ static void print_text(const char *path, const gm_yee_scene *sc, const gm_yee *s
          "grid arrays\n", gm_yee_dt(solver), steps, gm_yee_time_h(solver), wall,
          wall > 0 ? cells * (double)steps / wall / 1e6 : 0.0, (double)bytes / 1e6, n_arrays);
   if (r->energy.n > 0) {
-    const double *first = r->energy.values, *last = r->energy.values + (r->energy.n - 1) * 4;
+    const double *first = r->energy.values,
+                 *last = r->energy.values + (r->energy.n - 1) * r->energy.width;
     printf("  energy (electric + magnetic): %.9g at t = %.6g, %.9g at t = %.6g\n", first[2],
            r->energy.t[0], last[2], r->energy.t[r->energy.n - 1]);
   }
@@ -229,7 +231,7 @@ static int print_json(const char *path, const gm_yee_scene *sc, const gm_yee *so
   cJSON_AddStringToObject(o, "out", out_dir);
   cJSON_AddNumberToObject(o, "snapshots", (double)n_snapshots);
   if (r->energy.n > 0) {
-    const double *last = r->energy.values + (r->energy.n - 1) * 4;
+    const double *last = r->energy.values + (r->energy.n - 1) * r->energy.width;
     cJSON *e = cJSON_AddObjectToObject(o, "energy");
     cJSON_AddItemToObject(e, "initial", cli_json_number(r->energy.values[2]));
     cJSON_AddItemToObject(e, "final", cli_json_number(last[2]));
@@ -387,7 +389,8 @@ int mx_run_main(int argc, char **argv) {
   gm_yee_writer *writer = NULL;
   char file[4096];
   if (status == CLI_EXIT_OK &&
-      (series_init(&r.energy, scene.energy_every > 0 ? steps / scene.energy_every + 1 : 0, 4) != 0 ||
+      (series_init(&r.energy, scene.energy_every > 0 ? steps / scene.energy_every + 1 : 0,
+                   gm_yee_materials_n_dispersive(scene.materials) > 0 ? 5 : 4) != 0 ||
        series_init(&r.flux, scene.n_fluxes > 0 ? steps : 0, scene.n_fluxes) != 0)) {
     cli_error(COMMAND, "out of memory");
     status = CLI_EXIT_FAILURE;
@@ -447,7 +450,8 @@ int mx_run_main(int argc, char **argv) {
     }
   if (status == CLI_EXIT_OK && scene.n_probes > 0)
     status = write_probes_csv(mx_path(file, sizeof file, out_dir, "probes.csv"), &scene, solver);
-  static const char *const energy_names[] = {"electric", "magnetic", "plain", "leapfrog"};
+  static const char *const energy_names[] = {"electric", "magnetic", "plain", "leapfrog",
+                                             "polarization"};
   if (status == CLI_EXIT_OK && scene.energy_every > 0)
     status = write_series_csv(mx_path(file, sizeof file, out_dir, "energy.csv"), energy_names,
                               &r.energy);

@@ -111,6 +111,19 @@ Test(cli_maxwell_dispersive, drude_scene_runs_and_bad_poles_are_named) {
   run_output r = run_cli("maxwell run au.json --out o --json");
   cr_expect_eq(r.status, 0, "%s", r.err);
   run_output_free(&r);
+  /* energy.csv carries the poles' energy as a fifth column */
+  f = fopen(path_in_tmp("o/energy.csv"), "r");
+  cr_assert_not_null(f);
+  char line[256] = "", row[512] = "";
+  cr_assert_not_null(fgets(line, sizeof line, f));
+  while (fgets(row, sizeof row, f) != NULL) {
+  }
+  fclose(f);
+  cr_expect(strstr(line, "leapfrog,polarization") != NULL, "%s", line);
+  double t, v[5];
+  cr_assert_eq(sscanf(row, "%lf,%lf,%lf,%lf,%lf,%lf", &t, &v[0], &v[1], &v[2], &v[3], &v[4]), 6,
+               "%s", row);
+  cr_expect_gt(v[4], 0.0, "the gold slab holds polarization energy at the end: %s", row);
   f = fopen(path_in_tmp("bad.json"), "w");
   cr_assert_not_null(f);
   fputs("{\"grid\": {\"dim\": \"1d\", \"cells\": [40], \"size\": [4]},"
