@@ -1307,8 +1307,9 @@ gm_status gm_yee_scene_build(gm_yee_scene *s, const char *name, gm_yee **out,
       gm_yee_free(solver);
       return GM_EINVAL;
     }
-  /* a flux plane inside a CPML layer measures the stretched fields, not the physical flux */
-  for (size_t k = 0; k < s->n_fluxes; ++k) {
+  /* a flux plane inside a CPML layer measures the stretched fields, not the physical flux:
+   * refused for spectra ("dft"); the time-domain series of older scenes keep working */
+  for (size_t k = 0; s->dft_n > 0 && k < s->n_fluxes; ++k) {
     const int a = s->fluxes[k].axis;
     const long m = (long)s->fluxes[k].index, n = (long)s->grid.n[a];
     for (int f = 0; f < 2; ++f) {
