@@ -458,9 +458,24 @@ gm_status gm_experiment_phases(const char *dir, gm_phases_result *result, gm_err
 
 /* ---- harminv, filtered ------------------------------------------------------------------- */
 
+/* harminv's basis size (0: its default) and the filter on the modes it returns (the scene
+ * keys output.harminv.basis, max_error, min_q, min_amplitude). */
+typedef struct gm_resonance_params {
+  size_t basis;
+  double max_error, min_q, min_amplitude;
+} gm_resonance_params;
+
+/* basis 0, max_error 1e-4, min_q 1, min_amplitude 1e-6 */
+gm_resonance_params gm_resonance_params_defaults(void);
+
 /* Modes of a signal in [f_min, f_max] (gm_harminv), kept when harminv's error estimate is
- * below 1e-4, |Q| > 1 and the amplitude above 1e-6 of the largest; ascending frequency;
- * *n_modes <= cap. */
+ * below max_error, |Q| > min_q and the amplitude above min_amplitude of the largest (params
+ * NULL: the defaults); ascending frequency; *n_modes <= cap. */
+gm_status gm_experiment_resonances_with(const double *signal, size_t n, double dt, double f_min,
+                                        double f_max, const gm_resonance_params *params,
+                                        gm_harminv_mode *modes, size_t cap, size_t *n_modes,
+                                        gm_error *err);
+/* gm_experiment_resonances_with and the defaults */
 gm_status gm_experiment_resonances(const double *signal, size_t n, double dt, double f_min,
                                    double f_max, gm_harminv_mode *modes, size_t cap,
                                    size_t *n_modes, gm_error *err);

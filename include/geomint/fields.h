@@ -68,11 +68,49 @@ int gm_yee_dim_has(gm_yee_dim dim, gm_yee_component c);
 
 /* ---- materials: ε, μ, σ per cell, painted from shapes ------------------------------------- */
 
+/* A dispersive term of ε(f) (src/fields/yee_dispersive.c), in frequency units (cycles per unit
+ * time, as MEEP's susceptibilities), time dependence e^{−2πift}:
+ *   Drude:   −f_p² / (f² + i γ f)              frequency = f_p (plasma), gamma = γ
+ *   Lorentz:  Δε f_0² / (f_0² − f² − i γ f)    frequency = f_0 (resonance), gamma = γ,
+ *                                             strength = Δε
+ * so ε(f) = ε + Σ poles + iσ/(2πf) (ε the medium's epsilon, i.e. ε∞). γ >= 0 (0: lossless),
+ * frequency > 0, Δε > 0 (Δε is ignored for Drude poles). */
+typedef enum gm_pole_kind { GM_POLE_DRUDE = 0, GM_POLE_LORENTZ = 1 } gm_pole_kind;
+
+typedef struct gm_pole {
+  gm_pole_kind kind;
+  double frequency; /* f_p (Drude) or f_0 (Lorentz), > 0 */
+  double gamma;     /* damping γ in frequency units, >= 0 */
+  double strength;  /* Δε of a Lorentz pole, > 0 */
+} gm_pole;
+
 typedef struct gm_medium {
-  double epsilon; /* relative permittivity, > 0 */
+  double epsilon; /* relative permittivity (ε∞ of a dispersive medium), > 0 */
   double mu;      /* relative permeability, > 0 */
   double sigma;   /* electric conductivity, >= 0 */
 } gm_medium;
+
+/* Check poles (at most 64); the message names the bad one's field, as a scene's JSON path
+ * below the medium: "poles[1].gamma: the damping rate must be >= 0 and finite (got -1)". */
+gm_status gm_poles_check(size_t n_poles, const gm_pole *poles, gm_error *err);
+/* ε(f) of a medium with poles (real and imaginary parts, eps[2]) at frequency f > 0. dt = 0:
+ * the continuous model above; dt > 0: the permittivity the Yee solver's update realises at step
+ * dt, which is the continuous one at the frequency f̃ = tan(π f dt)/(π dt) for the poles and
+ * the conductivity (the bilinear map of the auxiliary-differential-equation scheme,
+ * yee_dispersive.c). GM_EINVAL for f <= 0, f >= 1/(2 dt), bad poles. */
+gm_status gm_medium_epsilon(const gm_medium *medium, size_t n_poles, const gm_pole *poles,
+                            double f, double dt, double eps[2], gm_error *err);
+
+/* The material library (src/fields/yee_material_library.c): Lorentz–Drude fits of Rakić et al.,
+ * Appl. Opt. 37 (1998) 5271, for "Ag", "Au", "Al" (case-insensitive), with lengths in units of
+ * unit_um micrometres (frequencies c/unit: f = E[eV] unit_um / 1.23984198). Writes ε∞ = 1,
+ * μ = 1, σ = 0 into *medium and the poles into poles[cap], their count into *n_poles
+ * (GM_MATERIAL_MAX_POLES is room enough). GM_ENOTFOUND for an unknown name, GM_EINVAL for
+ * unit_um <= 0 or a cap too small. gm_material_name(k) lists the names (NULL past the end). */
+#define GM_MATERIAL_MAX_POLES 8
+gm_status gm_material_find(const char *name, double unit_um, gm_medium *medium, gm_pole *poles,
+                           size_t cap, size_t *n_poles, gm_error *err);
+const char *gm_material_name(size_t k);
 
 /* Vacuum {1, 1, 0}. */
 gm_medium gm_medium_vacuum(void);
@@ -108,6 +146,13 @@ const double *gm_yee_materials_epsilon(const gm_yee_materials *m);
 const double *gm_yee_materials_mu(const gm_yee_materials *m);
 const double *gm_yee_materials_sigma(const gm_yee_materials *m);
 const char *gm_yee_materials_errmsg(const gm_yee_materials *m);
+/* The poles that every later paint (fill, box, sphere, cylinder) gives the cells it paints,
+ * with the medium it paints (copied; n_poles = 0: no poles, the default), like a pen's
+ * colour. Errors as gm_poles_check (message in gm_yee_materials_errmsg); the pen is then
+ * unchanged. gm_yee_paint_cells leaves the cells' poles as they are. */
+gm_status gm_yee_materials_set_poles(gm_yee_materials *m, size_t n_poles, const gm_pole *poles);
+/* Number of distinct dispersive pole sets painted (0: a non-dispersive medium everywhere). */
+size_t gm_yee_materials_n_dispersive(const gm_yee_materials *m);
 
 /* ---- boundaries --------------------------------------------------------------------------- */
 
@@ -428,6 +473,11 @@ typedef struct gm_yee_energy {
   double leapfrog;  /* ½ [E^{n−½}·⋆_ε E^{n−½} + H^{n−1}·⋆_μ H^n], the quadratic form the
                        lossless leapfrog conserves exactly (H^{n−1} = H^n + Δt ⋆_μ⁻¹ d E^{n−½}
                        is reconstructed, not stored) */
+  double polarization; /* energy held by the dispersive poles (yee_dispersive.c):
+                          Σ_edges V Σ_poles [J² + ω0² P̄²] / (2 w s), J = (P^{n−½} − P^{n−3/2})/Δt,
+                          P̄ their mean, s = Δε ω0² (Lorentz) or ω_p² (Drude), w the edge's
+                          fraction of the medium; 0 without poles. leapfrog + polarization is
+                          the total that a lossless medium keeps bounded */
 } gm_yee_energy;
 
 /* Energies summed over the grid (both parts for complex fields), PML cells included. V is the
@@ -480,6 +530,16 @@ gm_status gm_yee_dft_flux_spectrum(const gm_yee_dft_flux *flux, double *spectrum
  * keep its flux object, run with it and subtract; −spectrum is the reflected flux. */
 gm_status gm_yee_dft_flux_subtract(gm_yee_dft_flux *flux, const gm_yee_dft_flux *incident);
 const char *gm_yee_dft_flux_errmsg(const gm_yee_dft_flux *flux);
+/* Normalisation runs through a file (text, exact to the bit): save the transforms of n flux
+ * objects; in a later run with the same planes, frequencies and step, subtract them plane by
+ * plane (as gm_yee_dft_flux_subtract) and, when incident is non-NULL, write the saved run's
+ * spectra there (n × n_freq, plane-major): T = spectrum/incident, R = −spectrum/incident.
+ * Errors: GM_EIO (file), GM_EINVAL (another number of planes, another plane, frequencies or
+ * point count; the message says which). */
+gm_status gm_yee_dft_flux_save(gm_yee_dft_flux *const *fluxes, size_t n, const char *path,
+                               gm_error *err);
+gm_status gm_yee_dft_flux_subtract_file(gm_yee_dft_flux *const *fluxes, size_t n,
+                                        const char *path, double *incident, gm_error *err);
 
 /* ---- Maxwell on simplicial meshes: DEC leapfrog and AVI (seed 000 §3.4.2–3.4.3) ----------- */
 

@@ -36,6 +36,8 @@ typedef struct gm_yee_scene {
   gm_yee_grid grid;
   gm_yee_options options;
   gm_yee_materials *materials;    /* owned */
+  double unit_um;                 /* micrometres per length unit (key "unit_um", default 1): the
+                                     material library's frequencies depend on it */
   size_t n_points, n_planes;
   gm_point_source *points;        /* owned */
   gm_plane_wave *planes;          /* owned */
@@ -57,6 +59,21 @@ typedef struct gm_yee_scene {
   size_t energy_every;            /* 0: no energy series */
   int harminv;                    /* resonances of the probe signals */
   double harminv_fmin, harminv_fmax, harminv_after;
+  /* output.harminv's other parameters (docs/maxwell.md): the basis size (0: harminv's
+   * default, 1.1 per Fourier bin of the band) and the filter on the modes it returns: error
+   * estimate below max_error (default 1e-4), |Q| above min_q (default 1), amplitude at least
+   * min_amplitude times the strongest (default 1e-6) */
+  size_t harminv_basis;
+  double harminv_max_error, harminv_min_q, harminv_min_amplitude;
+  /* "dft": flux spectra of every flux plane at dft_n frequencies evenly in [dft_fmin, dft_fmax]
+   * (dft_n = 0: none), the normalisation file to write (dft_save) or to subtract
+   * (dft_subtract; paths as given, relative to the working directory; owned, may be NULL) */
+  size_t dft_n;
+  double dft_fmin, dft_fmax;
+  char *dft_save, *dft_subtract;
+  /* made by gm_yee_scene_build when dft_n > 0: one per flux plane (owned; observers of the
+   * solver built with them, so free the solver first or not advance it after the clear) */
+  gm_yee_dft_flux **dft;
 } gm_yee_scene;
 
 /* Read and check a scene file into *scene (which owns what it holds afterwards; release with

@@ -8,6 +8,7 @@
 #include <stdio.h>
 
 #include "cli/cli.h"
+#include "geomint/experiments.h"
 #include "geomint/yee_scene.h"
 
 /* The usage text of `geomint maxwell` (maxwell.c). */
@@ -27,9 +28,16 @@ int mx_mpi_launched(void);
 int mx_run_mpi_main(int argc, char **argv);
 
 /* ---- harminv summaries ---------------------------------------------------------------- */
+/* harminv's basis size (0: its default) and the filter on the modes it returns (scene keys
+ * output.harminv.basis, max_error, min_q, min_amplitude). */
+typedef gm_resonance_params mx_harminv_params; /* geomint/experiments.h */
+size_t mx_resonances_with(const double *signal, size_t n, double dt, double f_min, double f_max,
+                          const mx_harminv_params *params, gm_harminv_mode *modes, size_t cap,
+                          char *msg, size_t msg_cap);
 /* Modes of a signal in [f_min, f_max] (harminv), kept when harminv's error estimate is below
- * 1e-4, |Q| > 1 and the amplitude above 1e-6 of the largest; ascending frequency; returns how
- * many (<= cap). On a harminv failure returns 0 with the reason in msg. */
+ * max_error, |Q| > min_q and the amplitude at least min_amplitude of the largest; ascending
+ * frequency; returns how many (<= cap). On a harminv failure returns 0 with the reason in msg.
+ * mx_resonances: the defaults (basis 0, 1e-4, 1, 1e-6). */
 size_t mx_resonances(const double *signal, size_t n, double dt, double f_min, double f_max,
                      gm_harminv_mode *modes, size_t cap, char *msg, size_t msg_cap);
 
@@ -45,6 +53,10 @@ void mx_progress_end(mx_progress *p);
 double mx_now(void);
 
 /* ---- plots ------------------------------------------------------------------------------ */
+/* The "dft" flux spectra of a finished run: normalisation file, flux_spectra.csv/.png in out_dir
+ * (maxwell_spectra.c). */
+struct gm_yee_scene;
+int mx_write_spectra(const char *out_dir, const struct gm_yee_scene *scene);
 typedef struct mx_line {
   const char *title;
   size_t n;

@@ -51,6 +51,7 @@ static int observe_energy(void *ctx, const gm_yee *solver) {
   row[1] = e.magnetic;
   row[2] = e.plain;
   row[3] = e.leapfrog;
+  if (s->width > 4) row[4] = e.polarization; /* dispersive scenes: the poles' energy */
   s->n++;
   return 0;
 }
@@ -169,7 +170,8 @@ static void print_text(const char *path, const gm_yee_scene *sc, const gm_yee *s
          "grid arrays\n", gm_yee_dt(solver), steps, gm_yee_time_h(solver), wall,
          wall > 0 ? cells * (double)steps / wall / 1e6 : 0.0, (double)bytes / 1e6, n_arrays);
   if (r->energy.n > 0) {
-    const double *first = r->energy.values, *last = r->energy.values + (r->energy.n - 1) * 4;
+    const double *first = r->energy.values,
+                 *last = r->energy.values + (r->energy.n - 1) * r->energy.width;
     printf("  energy (electric + magnetic): %.9g at t = %.6g, %.9g at t = %.6g\n", first[2],
            r->energy.t[0], last[2], r->energy.t[r->energy.n - 1]);
   }
@@ -229,7 +231,7 @@ static int print_json(const char *path, const gm_yee_scene *sc, const gm_yee *so
   cJSON_AddStringToObject(o, "out", out_dir);
   cJSON_AddNumberToObject(o, "snapshots", (double)n_snapshots);
   if (r->energy.n > 0) {
-    const double *last = r->energy.values + (r->energy.n - 1) * 4;
+    const double *last = r->energy.values + (r->energy.n - 1) * r->energy.width;
     cJSON *e = cJSON_AddObjectToObject(o, "energy");
     cJSON_AddItemToObject(e, "initial", cli_json_number(r->energy.values[2]));
     cJSON_AddItemToObject(e, "final", cli_json_number(last[2]));
@@ -387,12 +389,13 @@ int mx_run_main(int argc, char **argv) {
   gm_yee_writer *writer = NULL;
   char file[4096];
   if (status == CLI_EXIT_OK &&
-      /* samples at step 0, every energy_every steps, and the final step when off that grid */
+      /* samples at step 0, every energy_every steps, and the final step when off that grid;
+       * a fifth column (polarization) with dispersive media */
       (series_init(&r.energy,
                    scene.energy_every > 0
                        ? steps / scene.energy_every + 1 + (steps % scene.energy_every != 0)
                        : 0,
-                   4) != 0 ||
+                   gm_yee_materials_n_dispersive(scene.materials) > 0 ? 5 : 4) != 0 ||
        series_init(&r.flux, scene.n_fluxes > 0 ? steps : 0, scene.n_fluxes) != 0)) {
     cli_error(COMMAND, "out of memory");
     status = CLI_EXIT_FAILURE;
@@ -452,7 +455,8 @@ int mx_run_main(int argc, char **argv) {
     }
   if (status == CLI_EXIT_OK && scene.n_probes > 0)
     status = write_probes_csv(mx_path(file, sizeof file, out_dir, "probes.csv"), &scene, solver);
-  static const char *const energy_names[] = {"electric", "magnetic", "plain", "leapfrog"};
+  static const char *const energy_names[] = {"electric", "magnetic", "plain", "leapfrog",
+                                             "polarization"};
   if (status == CLI_EXIT_OK && scene.energy_every > 0)
     status = write_series_csv(mx_path(file, sizeof file, out_dir, "energy.csv"), energy_names,
                               &r.energy);
@@ -474,6 +478,7 @@ int mx_run_main(int argc, char **argv) {
     if (field == NULL) field = gm_yee_dim_has(scene.grid.dim, GM_EZ) ? "Ez" : "Hz";
     status = plot_final(plot, field, path, &scene, solver);
   }
+  if (status == CLI_EXIT_OK) status = mx_write_spectra(out_dir, &scene);
   probe_result *pr = calloc(scene.n_probes + 1, sizeof *pr);
   if (status == CLI_EXIT_OK && scene.harminv && pr != NULL)
     for (size_t k = 0; k < scene.n_probes; ++k) {
@@ -482,9 +487,12 @@ int mx_run_main(int argc, char **argv) {
       gm_yee_probe_samples(solver, k, &n, &t, &re, &im);
       size_t first = 0;
       while (first < n && t[first] < scene.harminv_after) ++first;
-      pr[k].n_modes = mx_resonances(re + first, n - first, gm_yee_dt(solver), scene.harminv_fmin,
-                                    scene.harminv_fmax, pr[k].modes, MAX_MODES, pr[k].error,
-                                    sizeof pr[k].error);
+      const mx_harminv_params hp = {scene.harminv_basis, scene.harminv_max_error,
+                                    scene.harminv_min_q, scene.harminv_min_amplitude};
+      pr[k].n_modes = mx_resonances_with(re + first, n - first, gm_yee_dt(solver),
+                                         scene.harminv_fmin, scene.harminv_fmax, &hp,
+                                         pr[k].modes, MAX_MODES, pr[k].error,
+                                         sizeof pr[k].error);
     }
   if (status == CLI_EXIT_OK && pr != NULL && flux_integral != NULL) {
     size_t n_snap = gm_yee_writer_count(writer);

@@ -327,8 +327,11 @@ static int run(int argc, char **argv, int rank, int size) {
         size_t first = 0;
         const double to_t = scene.probes[k].component <= GM_EZ ? -0.5 * dt : 0.0;
         while (first < n_samples && (double)(first + 1) * dt + to_t < scene.harminv_after) ++first;
-        n_modes = mx_resonances(signals[k] + first, n_samples - first, dt, scene.harminv_fmin,
-                                scene.harminv_fmax, modes, MAX_MODES, msg, sizeof msg);
+        const mx_harminv_params hp = {scene.harminv_basis, scene.harminv_max_error,
+                                      scene.harminv_min_q, scene.harminv_min_amplitude};
+        n_modes = mx_resonances_with(signals[k] + first, n_samples - first, dt,
+                                     scene.harminv_fmin, scene.harminv_fmax, &hp, modes,
+                                     MAX_MODES, msg, sizeof msg);
       }
       if (probes) {
         cJSON *p = cJSON_CreateObject();

@@ -41,10 +41,17 @@ void mx_progress_end(mx_progress *p) {
 
 size_t mx_resonances(const double *signal, size_t n, double dt, double f_min, double f_max,
                      gm_harminv_mode *modes, size_t cap, char *msg, size_t msg_cap) {
+  return mx_resonances_with(signal, n, dt, f_min, f_max, NULL, modes, cap, msg, msg_cap);
+}
+
+size_t mx_resonances_with(const double *signal, size_t n, double dt, double f_min, double f_max,
+                          const mx_harminv_params *hp, gm_harminv_mode *modes, size_t cap,
+                          char *msg, size_t msg_cap) {
   gm_error err = {{0}};
   size_t kept = 0;
   msg[0] = '\0';
-  if (gm_experiment_resonances(signal, n, dt, f_min, f_max, modes, cap, &kept, &err) != GM_OK)
+  if (gm_experiment_resonances_with(signal, n, dt, f_min, f_max, hp, modes, cap, &kept, &err) !=
+      GM_OK)
     snprintf(msg, msg_cap, "%s", err.message);
   return kept;
 }

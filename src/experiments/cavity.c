@@ -43,13 +43,19 @@ void gm_cavity_result_clear(gm_cavity_result *r) {
   r->n_signal = 0;
 }
 
-gm_status gm_experiment_resonances(const double *signal, size_t n, double dt, double f_min,
-                                   double f_max, gm_harminv_mode *modes, size_t cap,
-                                   size_t *n_modes, gm_error *err) {
+gm_resonance_params gm_resonance_params_defaults(void) {
+  return (gm_resonance_params){0, 1e-4, 1.0, 1e-6};
+}
+
+gm_status gm_experiment_resonances_with(const double *signal, size_t n, double dt, double f_min,
+                                        double f_max, const gm_resonance_params *params,
+                                        gm_harminv_mode *modes, size_t cap, size_t *n_modes,
+                                        gm_error *err) {
+  const gm_resonance_params hp = params ? *params : gm_resonance_params_defaults();
   gm_harminv_mode all[256];
   size_t n_all = 0;
   *n_modes = 0;
-  gm_status st = gm_harminv(n, signal, NULL, dt, f_min, f_max, 0, 256, all, &n_all, err);
+  gm_status st = gm_harminv(n, signal, NULL, dt, f_min, f_max, hp.basis, 256, all, &n_all, err);
   if (st != GM_OK) return st;
   /* harminv also returns weak, badly resolved components of noise: keep a mode when its
    * error estimate is small, it is not overdamped (|Q| > 1; a lossless mode's decay is +-1e-13,
@@ -60,11 +66,18 @@ gm_status gm_experiment_resonances(const double *signal, size_t n, double dt, do
     if (isfinite(all[k].amplitude)) a_max = fmax(a_max, all[k].amplitude);
   size_t kept = 0;
   for (size_t k = 0; k < n_all && kept < cap; ++k)
-    if (all[k].error < 1e-4 && fabs(all[k].q) > 1 && isfinite(all[k].frequency) &&
-        all[k].amplitude > 1e-6 * a_max)
+    if (all[k].error < hp.max_error && fabs(all[k].q) > hp.min_q && isfinite(all[k].frequency) &&
+        all[k].amplitude > hp.min_amplitude * a_max)
       modes[kept++] = all[k];
   *n_modes = kept;
   return GM_OK;
+}
+
+gm_status gm_experiment_resonances(const double *signal, size_t n, double dt, double f_min,
+                                   double f_max, gm_harminv_mode *modes, size_t cap,
+                                   size_t *n_modes, gm_error *err) {
+  return gm_experiment_resonances_with(signal, n, dt, f_min, f_max, NULL, modes, cap, n_modes,
+                                       err);
 }
 
 typedef struct band_mode {

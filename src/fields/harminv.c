@@ -40,6 +40,22 @@ gm_status gm_harminv(size_t n, const double *re, const double *im, double dt, do
     }
     sig[i] = r + I * m;
   }
+  /* The harminv library ends the process (exit(1) from its LAPACK error check) on a signal that
+   * is zero: refuse it here; and scale a signal of extreme magnitude by its largest sample so
+   * that it does not under- or overflow in harminv's matrices (amplitudes are scaled back;
+   * other signals are passed unscaled, so their modes are bitwise as before). */
+  double smax = 0.0;
+  for (size_t i = 0; i < n; ++i) smax = fmax(smax, cabs(sig[i]));
+  if (!(smax > 0.0)) {
+    free(sig);
+    return gm_error_set(err, GM_EDOMAIN,
+                        "harminv: the signal is zero (%zu samples): no field reached the probe "
+                        "in the analysed window", n);
+  }
+  if (smax > 1e-100 && smax < 1e100)
+    smax = 1.0;
+  else
+    for (size_t i = 0; i < n; ++i) sig[i] /= smax;
   /* default basis size as the harminv program chooses it: density 1.1 per Fourier bin of the
    * band, at least 2 and at most 300 */
   size_t nf = n_basis;
@@ -71,7 +87,7 @@ gm_status gm_harminv(size_t n, const double *re, const double *im, double dt, do
     md.frequency = im == NULL ? fabs(f) : f;
     md.decay = harminv_get_decay(d, k) / dt;
     md.q = harminv_get_Q(d, k);
-    md.amplitude = cabs(amp);
+    md.amplitude = cabs(amp) * smax;
     md.phase = carg(amp);
     md.error = harminv_get_freq_error(d, k);
     if (md.frequency < f_min || md.frequency > f_max) continue;

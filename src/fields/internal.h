@@ -25,6 +25,14 @@ struct gm_yee_materials {
   double *epsilon, *mu, *sigma; /* per cell, x fastest */
   char errmsg[YEE_ERRMSG];
   struct yee_geometry *geometry; /* shapes painted, for subpixel smoothing (yee_smoothing.c) */
+  /* dispersive media (yee_dispersive.c): per cell the pole set painted there (0: none; NULL
+   * until a medium with poles is painted), and the sets: set k (1-based) holds the poles
+   * set_poles[set_start[k − 1] .. set_start[k]) */
+  unsigned *pole_set;
+  size_t n_sets;
+  size_t *set_start;  /* n_sets + 1 */
+  gm_pole *set_poles;
+  unsigned pen;       /* the set later paints give their cells (gm_yee_materials_set_poles) */
 };
 
 /* A box of locations of one component: [lo, lo + cnt) per axis, in component index space. */
@@ -138,6 +146,7 @@ struct gm_yee {
   double eps0, mu0;
   int smoothed;          /* edge ε from subpixel smoothing: yee_eps_edge reads it from cb, ca */
   struct yee_aniso *aniso; /* off-diagonal ε̃⁻¹ coupling on cut edges (NULL: none) */
+  struct yee_dispersive *disp; /* Drude/Lorentz poles on dispersive edges (NULL: none) */
   /* per axis, per position index (extent entries, index + offset): 1/(κ h) at integer (e)
    * and half-integer (h) positions; 0 on absent axes */
   double *inv_e[3], *inv_h[3];
@@ -256,5 +265,26 @@ void yee_aniso_free(gm_yee *s);
 double yee_aniso_eps(const gm_yee *s, int c, size_t q);
 void yee_smooth_face(const gm_yee_materials *m, const gm_yee_layout *L, const int periodic[3],
                      int c, long i, long j, long k, double *inv_mu);
+
+/* Dispersive media (yee_dispersive.c). Materials: record a medium's poles before painting
+ * (returns the set id to paint, 0 for none; GM_ENOMEM as -1), paint the cell ids. Solver: set
+ * up at create from the materials' cell ids; begin (before the E kernels: the pole updates that
+ * need only old values), apply (after the E kernels, sources and CPML: E corrected on the
+ * dispersive edges), apply_range (the same for edges with array index in [lo, lo + n), for the
+ * one-sweep step), sync (after E is set), energy, free. */
+long yee_materials_pole_set(gm_yee_materials *m, size_t n_poles, const gm_pole *poles);
+gm_status yee_dispersive_setup(gm_yee *s, const gm_yee_materials *m, gm_error *err);
+void yee_dispersive_begin(gm_yee *s);
+void yee_dispersive_apply(gm_yee *s);
+void yee_dispersive_apply_range(gm_yee *s, size_t lo, size_t n);
+void yee_dispersive_sync(gm_yee *s);
+double yee_dispersive_energy(const gm_yee *s);
+int yee_dispersive_has(const gm_yee *s, int c, size_t q);
+void yee_dispersive_free(gm_yee *s);
+/* Checkpoints: the dispersive state's arrays through fn (E^{m−1}, P^{m−1}, A^m per part) and
+ * their total length. */
+int yee_dispersive_visit(gm_yee *s, int (*fn)(void *ctx, double *data, size_t n), void *ctx);
+size_t yee_dispersive_state_size(const gm_yee *s);
+double yee_dual_weight(const gm_yee *s, int c, const long ijk[3]);
 
 #endif

@@ -57,6 +57,7 @@ gm_status gm_yee_advance(gm_yee *s, size_t n_steps) {
   if (st != GM_OK) return st;
   const int one_sweep = yee_wavefront_eligible(s);
   for (size_t n = 0; n < n_steps; ++n) {
+    yee_dispersive_begin(s); /* pole updates from old values (yee_dispersive.c) */
     if (one_sweep) {
       /* the same two half steps as below, interleaved plane by plane (yee_update.c) */
       yee_sources_begin_e(s);
@@ -67,6 +68,7 @@ gm_status gm_yee_advance(gm_yee *s, size_t n_steps) {
       yee_cpml_apply(s, 1);
       yee_tfsf_apply(s, 1);
       yee_sources_apply(s, 1);
+      yee_dispersive_apply(s); /* E on dispersive edges from the kernel's value */
       yee_aniso_apply(s); /* off-diagonal ε̃⁻¹ of smoothed interfaces (yee_aniso.c) */
       yee_apply_ghosts_e(s);
       if (s->exchange_e) s->exchange_e(s->exchange_ctx, s);
@@ -142,6 +144,7 @@ static void finish_set(gm_yee *s, int c, int part) {
         if (!in) f[yee_idx(&s->L, ijk[0], ijk[1], ijk[2])] = 0.0;
       }
   if (yee_is_e(c)) yee_aniso_sync(s);
+  if (yee_is_e(c)) yee_dispersive_sync(s);
   if (yee_is_e(c))
     yee_apply_ghosts_e(s);
   else

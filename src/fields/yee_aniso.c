@@ -73,6 +73,7 @@ static int eligible(const gm_yee *s, int c, const long ijk[3]) {
     if (ijk[a] < (long)b->lo[a] || ijk[a] >= (long)(b->lo[a] + b->cnt[a])) return 0;
   const size_t q = yee_idx(&s->L, ijk[0], ijk[1], ijk[2]);
   if (s->ca[c] && s->ca[c][q] != 1.0) return 0; /* lossy */
+  if (yee_dispersive_has(s, c, q)) return 0;      /* its E update is the ADE's (yee_dispersive.c) */
   for (int a = 0; a < s->n_axes; ++a)
     for (int f = 0; f < 2; ++f) {
       const gm_yee_boundary *bd = &s->opt.boundary[2 * a + f];

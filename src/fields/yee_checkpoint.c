@@ -24,6 +24,7 @@ static void header(const gm_yee *s, uint64_t h[N_HEAD]) {
   h[8] = s->n_probes;
   h[9] = s->n_tfsf;
   for (size_t t = 0; t < s->n_cpml; ++t) h[10] += s->cpml[t].n;
+  h[10] += yee_dispersive_state_size(s); /* 0 without poles: older files read unchanged */
   for (size_t i = 0; i < s->n_sources; ++i) h[11] += s->sources[i].rho ? s->sources[i].n_vertices : 0;
   for (size_t i = 0; i < s->n_tfsf; ++i) h[12] += s->tfsf[i].n_aux;
   for (int c = 0; c < GM_YEE_N_COMPONENTS; ++c) h[13] |= (uint64_t)s->active[c] << c;
@@ -44,6 +45,7 @@ static int visit_state(gm_yee *s, visit_fn fn, void *ctx) {
     const size_t n = s->tfsf[i].n_aux;
     if (fn(ctx, s->tfsf[i].e, n) != 0 || fn(ctx, s->tfsf[i].h, n - 1) != 0) return -1;
   }
+  if (yee_dispersive_visit(s, fn, ctx) != 0) return -1;
   for (size_t i = 0; i < s->n_probes; ++i) {
     yee_probe *q = &s->probes[i];
     if (fn(ctx, q->t, q->n) != 0 || fn(ctx, q->re, q->n) != 0) return -1;

@@ -389,6 +389,11 @@ gm_status yee_create_with(const gm_yee_grid *grid, const gm_yee_materials *mater
           }
     }
   }
+  st = yee_dispersive_setup(s, materials, err); /* before the coupling: it skips these edges */
+  if (st != GM_OK) {
+    gm_yee_free(s);
+    return st;
+  }
   st = yee_aniso_setup(s, materials, err);
   if (st != GM_OK) {
     gm_yee_free(s);
@@ -416,6 +421,7 @@ gm_status yee_create_with(const gm_yee_grid *grid, const gm_yee_materials *mater
 void gm_yee_free(gm_yee *s) {
   if (s == NULL) return;
   yee_aniso_free(s);
+  yee_dispersive_free(s);
   for (int p = 0; p < 2; ++p)
     for (int c = 0; c < GM_YEE_N_COMPONENTS; ++c)
       if (s->f[p][c] != s->zeros) free(s->f[p][c]);

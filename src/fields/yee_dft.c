@@ -7,6 +7,7 @@
  * needs no interpolation in time. In space, as gm_yee_poynting_flux: E_b on the plane and H_c
  * averaged over the two faces beside it share their positions in the plane. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -205,3 +206,97 @@ gm_status gm_yee_dft_flux_subtract(gm_yee_dft_flux *d, const gm_yee_dft_flux *in
 }
 
 const char *gm_yee_dft_flux_errmsg(const gm_yee_dft_flux *d) { return d ? d->errmsg : ""; }
+
+/* ---- normalisation runs through a file ------------------------------------------------------
+ * Text, one flux object after the other: a line "gm-dft-flux axis index n_freq n_parts np0
+ * np1 dt", the frequencies, then per part and term the four transforms (Ê re, Ê im, Ĥ re, Ĥ im),
+ * every value with 17 significant digits (read back exactly). */
+
+static int write_values(FILE *f, const double *v, size_t n) {
+  for (size_t i = 0; i < n; ++i)
+    if (fprintf(f, "%.17g\n", v[i]) < 0) return -1;
+  return 0;
+}
+
+gm_status gm_yee_dft_flux_save(gm_yee_dft_flux *const *fluxes, size_t n, const char *path,
+                               gm_error *err) {
+  if (fluxes == NULL || path == NULL) return gm_error_set(err, GM_EINVAL, "dft save: NULL");
+  FILE *f = fopen(path, "w");
+  if (f == NULL) return gm_error_set(err, GM_EIO, "dft save: cannot write %s", path);
+  int bad = fprintf(f, "gm-dft-fluxes %zu\n", n) < 0;
+  for (size_t k = 0; k < n && !bad; ++k) {
+    const gm_yee_dft_flux *d = fluxes[k];
+    bad |= fprintf(f, "gm-dft-flux %d %zu %zu %d %zu %zu %.17g\n", d->axis, d->index,
+                   d->n_freq, d->n_parts, d->n_points[0], d->n_points[1], d->dt) < 0;
+    bad |= write_values(f, d->freq, d->n_freq);
+    for (int p = 0; p < d->n_parts && !bad; ++p)
+      for (int t = 0; t < 2 && !bad; ++t) {
+        const size_t m = d->n_freq * d->n_points[t];
+        if (m == 0) continue;
+        bad |= write_values(f, d->e_re[p][t], m) || write_values(f, d->e_im[p][t], m) ||
+               write_values(f, d->h_re[p][t], m) || write_values(f, d->h_im[p][t], m);
+      }
+  }
+  bad |= fclose(f) != 0;
+  return bad ? gm_error_set(err, GM_EIO, "dft save: writing %s failed", path) : GM_OK;
+}
+
+static int read_values(FILE *f, double *v, size_t n) {
+  for (size_t i = 0; i < n; ++i)
+    if (fscanf(f, "%lf", &v[i]) != 1 || !isfinite(v[i])) return -1;
+  return 0;
+}
+
+gm_status gm_yee_dft_flux_subtract_file(gm_yee_dft_flux *const *fluxes, size_t n,
+                                        const char *path, double *incident, gm_error *err) {
+  if (fluxes == NULL || path == NULL) return gm_error_set(err, GM_EINVAL, "dft subtract: NULL");
+  FILE *f = fopen(path, "r");
+  if (f == NULL) return gm_error_set(err, GM_EIO, "dft subtract: cannot read %s", path);
+  size_t count = 0;
+  gm_status st = GM_OK;
+  if (fscanf(f, " gm-dft-fluxes %zu", &count) != 1 || count != n)
+    st = gm_error_set(err, GM_EINVAL,
+                      "dft subtract: %s holds %zu flux planes, this run has %zu (the "
+                      "normalisation run must have the same planes)", path, count, n);
+  for (size_t k = 0; k < n && st == GM_OK; ++k) {
+    const gm_yee_dft_flux *d = fluxes[k];
+    gm_yee_dft_flux c = *d; /* the incident run's transforms, in arrays of the same shape */
+    int axis = -1, parts = 0;
+    size_t index = 0, nf = 0, np0 = 0, np1 = 0;
+    double step = 0.0;
+    if (fscanf(f, " gm-dft-flux %d %zu %zu %d %zu %zu %lf", &axis, &index, &nf, &parts, &np0,
+               &np1, &step) != 7 ||
+        step != d->dt || axis != d->axis || index != d->index || nf != d->n_freq || parts != d->n_parts ||
+        np0 != d->n_points[0] || np1 != d->n_points[1]) {
+      st = gm_error_set(err, GM_EINVAL,
+                        "dft subtract: %s: flux plane %zu differs from this run's (axis, plane, "
+                        "frequencies, points, time step)", path, k);
+      break;
+    }
+    double *buf = malloc((nf + 4 * 2 * 2 * nf * (np0 + np1) + 1) * sizeof *buf);
+    if (buf == NULL) {
+      st = gm_error_set(err, GM_ENOMEM, "dft subtract: out of memory");
+      break;
+    }
+    double *at = buf + nf;
+    int bad = read_values(f, buf, nf);
+    for (size_t i = 0; i < nf && !bad; ++i) bad = buf[i] != d->freq[i];
+    for (int p = 0; p < parts && !bad; ++p)
+      for (int t = 0; t < 2 && !bad; ++t) {
+        const size_t m = nf * d->n_points[t];
+        c.e_re[p][t] = at, c.e_im[p][t] = at + m, c.h_re[p][t] = at + 2 * m;
+        c.h_im[p][t] = at + 3 * m;
+        bad = m > 0 && read_values(f, at, 4 * m);
+        at += 4 * m;
+      }
+    if (bad)
+      st = gm_error_set(err, GM_EINVAL,
+                        "dft subtract: %s: flux plane %zu: unreadable or different frequencies",
+                        path, k);
+    if (st == GM_OK && incident != NULL) gm_yee_dft_flux_spectrum(&c, incident + k * nf);
+    if (st == GM_OK) gm_yee_dft_flux_subtract(fluxes[k], &c);
+    free(buf);
+  }
+  fclose(f);
+  return st;
+}

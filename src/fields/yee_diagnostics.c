@@ -22,7 +22,7 @@ static double cbh_at(const gm_yee *s, int c, size_t q) { return s->cb[c] ? s->cb
 
 /* Dual volume weight of a location: Π h, halved for each non-periodic axis where the location
  * is a wall node (0 or n); 0 for the duplicate node n of a periodic axis. */
-static double dual_weight(const gm_yee *s, int c, const long ijk[3]) {
+double yee_dual_weight(const gm_yee *s, int c, const long ijk[3]) {
   double sh[3];
   gm_yee_component_shift(s->L.dim, (gm_yee_component)c, sh);
   double w = s->L.h[0] * s->L.h[1] * s->L.h[2];
@@ -50,7 +50,7 @@ gm_status gm_yee_get_energy(const gm_yee *s, gm_yee_energy *en) {
         for (long j = 0; j < (long)cnt[1]; ++j)
           for (long i = 0; i < (long)cnt[0]; ++i) {
             const long ijk[3] = {i, j, k};
-            const double w = dual_weight(s, c, ijk);
+            const double w = yee_dual_weight(s, c, ijk);
             if (w == 0.0) continue;
             const size_t q = yee_idx(&s->L, i, j, k);
             const double v = f[q];
@@ -69,6 +69,7 @@ gm_status gm_yee_get_energy(const gm_yee *s, gm_yee_energy *en) {
   en->magnetic = 0.5 * wh;
   en->plain = en->electric + en->magnetic;
   en->leapfrog = 0.5 * (we + wl);
+  en->polarization = yee_dispersive_energy(s);
   return GM_OK;
 }
 
@@ -230,7 +231,7 @@ gm_status gm_yee_poynting_flux(const gm_yee *s, int axis, size_t index, double *
           e3[axis] = m;
           e3[b] = u;
           e3[c] = v;
-          double w = dual_weight(s, ec, e3) / s->L.h[axis]; /* area in the plane */
+          double w = yee_dual_weight(s, ec, e3) / s->L.h[axis]; /* area in the plane */
           if (w == 0.0) continue;
           const double E = s->f[p][ec][yee_idx(&s->L, e3[0], e3[1], e3[2])];
           double H = 0.0;

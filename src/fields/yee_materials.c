@@ -94,6 +94,9 @@ gm_status gm_yee_materials_create(const gm_yee_grid *grid, gm_yee_materials **ou
 
 void gm_yee_materials_free(gm_yee_materials *m) {
   if (m == NULL) return;
+  free(m->pole_set);
+  free(m->set_start);
+  free(m->set_poles);
   yee_geometry_free(m);
   free(m->epsilon);
   free(m->mu);
@@ -105,11 +108,13 @@ gm_status gm_yee_materials_fill(gm_yee_materials *m, const gm_medium *medium) {
   if (m == NULL) return GM_EINVAL;
   gm_status st = medium_check(m, medium);
   if (st != GM_OK) return st;
+  const unsigned set = m->pen;
   yee_geometry_reset(m);
   for (size_t c = 0; c < m->n_cells; ++c) {
     m->epsilon[c] = medium->epsilon;
     m->mu[c] = medium->mu;
     m->sigma[c] = medium->sigma;
+    if (m->pole_set) m->pole_set[c] = (unsigned)set;
   }
   return GM_OK;
 }
@@ -119,6 +124,7 @@ static gm_status paint(gm_yee_materials *m, int (*inside)(const void *ctx, const
                        const void *ctx, const gm_medium *medium) {
   gm_status st = medium_check(m, medium);
   if (st != GM_OK) return st;
+  const unsigned set = m->pen;
   const gm_yee_grid *g = &m->grid;
   const size_t axes = gm_yee_dim_axes(g->dim);
   for (size_t k = 0; k < g->n[2]; ++k)
@@ -133,6 +139,7 @@ static gm_status paint(gm_yee_materials *m, int (*inside)(const void *ctx, const
         m->epsilon[c] = medium->epsilon;
         m->mu[c] = medium->mu;
         m->sigma[c] = medium->sigma;
+        if (m->pole_set) m->pole_set[c] = (unsigned)set;
       }
   return GM_OK;
 }
@@ -266,3 +273,48 @@ const double *gm_yee_materials_epsilon(const gm_yee_materials *m) { return m ? m
 const double *gm_yee_materials_mu(const gm_yee_materials *m) { return m ? m->mu : NULL; }
 const double *gm_yee_materials_sigma(const gm_yee_materials *m) { return m ? m->sigma : NULL; }
 const char *gm_yee_materials_errmsg(const gm_yee_materials *m) { return m ? m->errmsg : ""; }
+size_t gm_yee_materials_n_dispersive(const gm_yee_materials *m) { return m ? m->n_sets : 0; }
+
+/* The set id of the medium's poles (appending a new set unless an equal one exists; the cell
+ * array is allocated, all 0, with the first set). 0 for a medium without poles, -1: no memory. */
+static int same_poles(const gm_pole *a, const gm_pole *b, size_t n) {
+  for (size_t i = 0; i < n; ++i)
+    if (a[i].kind != b[i].kind || a[i].frequency != b[i].frequency ||
+        a[i].gamma != b[i].gamma || (a[i].kind == GM_POLE_LORENTZ && a[i].strength != b[i].strength))
+      return 0;
+  return 1;
+}
+
+long yee_materials_pole_set(gm_yee_materials *m, size_t n_poles, const gm_pole *src) {
+  if (n_poles == 0) return 0;
+  for (size_t k = 0; k < m->n_sets; ++k) {
+    const size_t n = m->set_start[k + 1] - m->set_start[k];
+    if (n == n_poles && same_poles(m->set_poles + m->set_start[k], src, n)) return (long)k + 1;
+  }
+  if (m->pole_set == NULL) {
+    m->pole_set = calloc(m->n_cells, sizeof *m->pole_set);
+    m->set_start = calloc(1, sizeof *m->set_start);
+    if (m->pole_set == NULL || m->set_start == NULL) return -1;
+  }
+  const size_t total = m->set_start[m->n_sets] + n_poles;
+  size_t *start = realloc(m->set_start, (m->n_sets + 2) * sizeof *start);
+  if (start == NULL) return -1;
+  m->set_start = start;
+  gm_pole *poles = realloc(m->set_poles, total * sizeof *poles);
+  if (poles == NULL) return -1;
+  m->set_poles = poles;
+  memcpy(poles + m->set_start[m->n_sets], src, n_poles * sizeof *poles);
+  m->set_start[m->n_sets + 1] = total;
+  return (long)++m->n_sets;
+}
+
+gm_status gm_yee_materials_set_poles(gm_yee_materials *m, size_t n_poles, const gm_pole *poles) {
+  if (m == NULL) return GM_EINVAL;
+  gm_error e = {{0}};
+  if (gm_poles_check(n_poles, poles, &e) != GM_OK)
+    return gm_fail(m->errmsg, sizeof m->errmsg, GM_EINVAL, "poles: %.200s", e.message);
+  const long set = yee_materials_pole_set(m, n_poles, poles);
+  if (set < 0) return gm_fail(m->errmsg, sizeof m->errmsg, GM_ENOMEM, "poles: out of memory");
+  m->pen = (unsigned)set;
+  return GM_OK;
+}

@@ -340,6 +340,94 @@ static int parse_grid(parser *p, const cJSON *root, gm_yee_scene *s) {
 
 static const char *const medium_keys[] = {"epsilon", "mu", "sigma"};
 
+/* One element of "poles": {"type": "drude"|"lorentz", "frequency", "gamma", "delta_epsilon"}. */
+static int parse_pole(parser *p, const cJSON *item, gm_pole *pole) {
+  static const char *const keys[] = {"type", "frequency", "gamma", "delta_epsilon", NULL};
+  const char *type = NULL;
+  *pole = (gm_pole){GM_POLE_DRUDE, 0.0, 0.0, 0.0};
+  if (check_keys(p, item, keys) != 0 || get_string(p, item, "type", 1, &type) != 0) return -1;
+  if (strcmp(type, "drude") == 0 || strcmp(type, "lorentz") == 0) {
+    pole->kind = type[0] == 'd' ? GM_POLE_DRUDE : GM_POLE_LORENTZ;
+  } else {
+    size_t o = push_key(p, "type");
+    int rc = fail(p, "expected \"drude\" or \"lorentz\", got \"%s\"", type);
+    pop(p, o);
+    return rc;
+  }
+  const int lorentz = pole->kind == GM_POLE_LORENTZ;
+  if (get_number(p, item, "frequency", 1, &pole->frequency) != 0 ||
+      get_number(p, item, "gamma", 0, &pole->gamma) < 0 ||
+      get_number(p, item, "delta_epsilon", lorentz, &pole->strength) < 0)
+    return -1;
+  if (!lorentz && member(item, "delta_epsilon") != NULL) {
+    size_t o = push_key(p, "delta_epsilon");
+    int rc = fail(p, "a Drude pole has no delta_epsilon (its strength is the plasma frequency)");
+    pop(p, o);
+    return rc;
+  }
+  return 0;
+}
+
+/* "library" (a metal of the material library, lengths in the scene's unit_um) and "poles" of
+ * obj: the poles the materials' pen gets for this medium (none when neither is given). */
+static int parse_poles(parser *p, const cJSON *obj, gm_yee_scene *s, gm_medium *m) {
+  gm_pole poles[GM_MATERIAL_MAX_POLES + 16];
+  size_t n = 0;
+  const char *lib = NULL;
+  int rc = get_string(p, obj, "library", 0, &lib);
+  if (rc < 0) return -1;
+  if (rc == 0) {
+    gm_error err = {{0}};
+    size_t o = push_key(p, "library");
+    const double eps = m->epsilon;
+    if (gm_material_find(lib, s->unit_um, m, poles, GM_MATERIAL_MAX_POLES, &n, &err) != GM_OK) {
+      rc = fail(p, "%s", err.message);
+      pop(p, o);
+      return rc;
+    }
+    pop(p, o);
+    if (member(obj, "epsilon") != NULL) m->epsilon = eps; /* an explicit ε∞ wins */
+  }
+  const cJSON *list;
+  rc = get_array(p, obj, "poles", &list);
+  if (rc < 0) return -1;
+  if (rc == 0) {
+    size_t old = push_key(p, "poles");
+    size_t k = 0;
+    const cJSON *item;
+    cJSON_ArrayForEach(item, list) {
+      size_t o = push_index(p, k);
+      if (n >= sizeof poles / sizeof poles[0])
+        rc = fail(p, "too many poles (at most %zu with the library's)", sizeof poles / sizeof poles[0]);
+      else if (!cJSON_IsObject(item))
+        rc = fail(p, "expected an object, got %s", type_name(item));
+      else
+        rc = parse_pole(p, item, &poles[n++]);
+      pop(p, o);
+      ++k;
+      if (rc != 0) break;
+    }
+    pop(p, old);
+    if (rc != 0) return -1;
+  }
+  gm_error err = {{0}};
+  if (gm_poles_check(n, poles, &err) != GM_OK) {
+    /* "poles[k].field: why": the library's poles come first, so k is the array index only when
+     * there is no library; name it as the path either way */
+    char key[64] = {0};
+    const char *colon = strstr(err.message, ": ");
+    const size_t len = colon ? (size_t)(colon - err.message) : 0;
+    if (len > 0 && len < sizeof key) memcpy(key, err.message, len);
+    size_t o = push_key(p, key[0] ? key : "poles");
+    rc = fail(p, "%s", colon ? colon + 2 : err.message);
+    pop(p, o);
+    return rc;
+  }
+  if (gm_yee_materials_set_poles(s->materials, n, poles) != GM_OK)
+    return fail(p, "%s", gm_yee_materials_errmsg(s->materials));
+  return 0;
+}
+
 /* epsilon, mu, sigma of obj over the defaults in m. */
 static int parse_medium(parser *p, const cJSON *obj, gm_medium *m) {
   double *v[3] = {&m->epsilon, &m->mu, &m->sigma};
@@ -386,9 +474,11 @@ static int parse_material(parser *p, const cJSON *item, size_t i, gm_yee_scene *
   gm_medium m = gm_medium_vacuum();
   int rc = get_string(p, item, "shape", 1, &shape) != 0 ? -1 : 0;
   if (rc == 0 && parse_medium(p, item, &m) != 0) rc = -1;
+  if (rc == 0 && parse_poles(p, item, s, &m) != 0) rc = -1;
   gm_status st = GM_OK;
   if (rc == 0 && strcmp(shape, "box") == 0) {
-    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "lo", "hi", NULL};
+    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "poles", "library",
+                                       "lo", "hi", NULL};
     double lo[3], hi[3];
     if (check_keys(p, item, keys) != 0 || get_vector(p, item, "lo", 1, axes, 3, 0, lo) != 0 ||
         get_vector(p, item, "hi", 1, axes, 3, 0, hi) != 0)
@@ -396,8 +486,8 @@ static int parse_material(parser *p, const cJSON *item, size_t i, gm_yee_scene *
     else
       st = gm_yee_paint_box(s->materials, lo, hi, &m);
   } else if (rc == 0 && strcmp(shape, "sphere") == 0) {
-    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "center", "radius",
-                                       NULL};
+    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "poles", "library",
+                                       "center", "radius", NULL};
     double c[3], r = 0;
     if (check_keys(p, item, keys) != 0 ||
         get_vector(p, item, "center", 1, axes, 3, 0, c) != 0 ||
@@ -406,8 +496,8 @@ static int parse_material(parser *p, const cJSON *item, size_t i, gm_yee_scene *
     else
       st = gm_yee_paint_sphere(s->materials, c, r, &m);
   } else if (rc == 0 && strcmp(shape, "cylinder") == 0) {
-    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "center", "axis",
-                                       "radius", "height", NULL};
+    static const char *const keys[] = {"shape", "epsilon", "mu", "sigma", "poles", "library",
+                                       "center", "axis", "radius", "height", NULL};
     double c[3], ax[3] = {0, 0, 1}, r = 0, height = INFINITY;
     if (check_keys(p, item, keys) != 0 ||
         get_vector(p, item, "center", 1, axes, 3, 0, c) != 0 ||
@@ -428,6 +518,14 @@ static int parse_material(parser *p, const cJSON *item, size_t i, gm_yee_scene *
 
 static int parse_materials(parser *p, const cJSON *root, gm_yee_scene *s) {
   gm_error err = {{0}};
+  s->unit_um = 1.0;
+  if (get_number(p, root, "unit_um", 0, &s->unit_um) < 0) return -1;
+  if (!(s->unit_um > 0) || !isfinite(s->unit_um)) {
+    size_t o = push_key(p, "unit_um");
+    int rc = fail(p, "must be > 0 (micrometres per length unit), got %g", s->unit_um);
+    pop(p, o);
+    return rc;
+  }
   if (gm_yee_materials_create(&s->grid, &s->materials, &err) != GM_OK) return lib_fail(p, err.message);
   const cJSON *bg;
   int rc = get_object(p, root, "background", 0, &bg);
@@ -435,8 +533,11 @@ static int parse_materials(parser *p, const cJSON *root, gm_yee_scene *s) {
   if (rc == 0) {
     size_t old = push_key(p, "background");
     gm_medium m = gm_medium_vacuum();
-    static const char *const keys[] = {"epsilon", "mu", "sigma", NULL};
-    rc = check_keys(p, bg, keys) != 0 || parse_medium(p, bg, &m) != 0 ? -1 : 0;
+    static const char *const keys[] = {"epsilon", "mu", "sigma", "poles", "library", NULL};
+    rc = check_keys(p, bg, keys) != 0 || parse_medium(p, bg, &m) != 0 ||
+                 parse_poles(p, bg, s, &m) != 0
+             ? -1
+             : 0;
     if (rc == 0 && gm_yee_materials_fill(s->materials, &m) != GM_OK)
       rc = lib_fail(p, gm_yee_materials_errmsg(s->materials));
     pop(p, old);
@@ -753,6 +854,45 @@ static int parse_flux(parser *p, const cJSON *item, size_t i, gm_yee_scene *s) {
   return rc;
 }
 
+/* "dft": {"f_min", "f_max", "n", "save", "subtract"}: the flux planes' spectra. */
+static int parse_dft(parser *p, const cJSON *root, gm_yee_scene *s) {
+  const cJSON *obj;
+  int rc = get_object(p, root, "dft", 0, &obj);
+  if (rc != 0) return rc < 0 ? -1 : 0;
+  size_t old = push_key(p, "dft");
+  static const char *const keys[] = {"f_min", "f_max", "n", "save", "subtract", NULL};
+  const char *save = NULL, *sub = NULL;
+  rc = check_keys(p, obj, keys) != 0 || get_number(p, obj, "f_min", 1, &s->dft_fmin) != 0 ||
+               get_number(p, obj, "f_max", 1, &s->dft_fmax) != 0 ||
+               get_count(p, obj, "n", 1, &s->dft_n) != 0 ||
+               get_string(p, obj, "save", 0, &save) < 0 ||
+               get_string(p, obj, "subtract", 0, &sub) < 0
+           ? -1
+           : 0;
+  const char *bad = NULL;
+  char why[128] = "";
+  if (rc == 0 && !(s->dft_fmin >= 0))
+    bad = "f_min", snprintf(why, sizeof why, "must be >= 0, got %g", s->dft_fmin);
+  else if (rc == 0 && !(s->dft_fmax >= s->dft_fmin && isfinite(s->dft_fmax)))
+    bad = "f_max", snprintf(why, sizeof why, "must be >= f_min and finite, got %g", s->dft_fmax);
+  else if (rc == 0 && (s->dft_n == 0 || s->dft_n > 100000))
+    bad = "n", snprintf(why, sizeof why, "must be in 1 .. 100000 frequencies");
+  else if (rc == 0 && s->dft_n > 1 && s->dft_fmax == s->dft_fmin)
+    bad = "f_max", snprintf(why, sizeof why, "equals f_min with n > 1 frequencies");
+  else if (rc == 0 && s->n_fluxes == 0)
+    bad = "n", snprintf(why, sizeof why, "flux spectra need flux planes (\"flux\")");
+  if (bad != NULL) {
+    size_t o = push_key(p, bad);
+    rc = fail(p, "%s", why);
+    pop(p, o);
+  }
+  if (rc == 0 && save != NULL && (s->dft_save = strdup(save)) == NULL) rc = fail(p, "out of memory");
+  if (rc == 0 && sub != NULL && (s->dft_subtract = strdup(sub)) == NULL)
+    rc = fail(p, "out of memory");
+  pop(p, old);
+  return rc;
+}
+
 static int parse_fluxes(parser *p, const cJSON *root, gm_yee_scene *s) {
   const cJSON *list;
   int rc = get_array(p, root, "flux", &list);
@@ -814,14 +954,37 @@ static int parse_output(parser *p, const cJSON *root, gm_yee_scene *s) {
   const cJSON *hv;
   if (rc == 0 && (rc = get_object(p, obj, "harminv", 0, &hv)) == 0) {
     size_t o = push_key(p, "harminv");
-    static const char *const hkeys[] = {"f_min", "f_max", "after", NULL};
+    static const char *const hkeys[] = {"f_min", "f_max", "after", "basis", "max_error",
+                                        "min_q", "min_amplitude", NULL};
     s->harminv = 1;
+    s->harminv_max_error = 1e-4, s->harminv_min_q = 1.0, s->harminv_min_amplitude = 1e-6;
     if (check_keys(p, hv, hkeys) != 0 || get_number(p, hv, "f_min", 1, &s->harminv_fmin) != 0 ||
         get_number(p, hv, "f_max", 1, &s->harminv_fmax) != 0 ||
-        get_number(p, hv, "after", 0, &s->harminv_after) < 0)
+        get_number(p, hv, "after", 0, &s->harminv_after) < 0 ||
+        get_count(p, hv, "basis", 0, &s->harminv_basis) < 0 ||
+        get_number(p, hv, "max_error", 0, &s->harminv_max_error) < 0 ||
+        get_number(p, hv, "min_q", 0, &s->harminv_min_q) < 0 ||
+        get_number(p, hv, "min_amplitude", 0, &s->harminv_min_amplitude) < 0)
       rc = -1;
     if (rc == 0 && !(s->harminv_fmin >= 0 && s->harminv_fmax > s->harminv_fmin))
       rc = fail(p, "expected 0 <= f_min < f_max");
+    /* the basis is a dense complex eigenproblem of its size (harminv allocates a few basis²
+     * matrices): 1000 is 16 MB each */
+    const char *bad = NULL;
+    char why[96] = "";
+    if (rc == 0 && s->harminv_basis != 0 && (s->harminv_basis < 2 || s->harminv_basis > 1000))
+      bad = "basis", snprintf(why, sizeof why, "must be 0 (harminv's default) or 2 .. 1000");
+    else if (rc == 0 && !(s->harminv_max_error > 0 && s->harminv_max_error <= 1))
+      bad = "max_error", snprintf(why, sizeof why, "must be in (0, 1]");
+    else if (rc == 0 && !(s->harminv_min_q >= 0 && isfinite(s->harminv_min_q)))
+      bad = "min_q", snprintf(why, sizeof why, "must be >= 0 and finite");
+    else if (rc == 0 && !(s->harminv_min_amplitude >= 0 && s->harminv_min_amplitude < 1))
+      bad = "min_amplitude", snprintf(why, sizeof why, "must be in [0, 1) (relative to the strongest mode)");
+    if (bad != NULL) {
+      size_t o2 = push_key(p, bad);
+      rc = fail(p, "%s", why);
+      pop(p, o2);
+    }
     pop(p, o);
   } else if (rc == 1) {
     rc = 0;
@@ -950,7 +1113,7 @@ gm_status gm_yee_scene_parse(const char *text, const char *name, gm_yee_scene *s
   if (rc == 0) rc = check_duplicates(&p, root);
   static const char *const keys[] = {"grid", "background", "materials", "boundaries", "pml",
                                      "bloch_k", "sources", "probes", "flux", "output", "run",
-                                     "description", "eps_averaging", NULL};
+                                     "description", "eps_averaging", "unit_um", "dft", NULL};
   if (rc == 0) rc = check_keys(&p, root, keys);
   if (rc == 0) rc = parse_grid(&p, root, s);
   if (rc == 0) rc = parse_materials(&p, root, s);
@@ -962,6 +1125,7 @@ gm_status gm_yee_scene_parse(const char *text, const char *name, gm_yee_scene *s
   if (rc == 0) rc = parse_sources(&p, root, s);
   if (rc == 0) rc = parse_probes(&p, root, s);
   if (rc == 0) rc = parse_fluxes(&p, root, s);
+  if (rc == 0) rc = parse_dft(&p, root, s);
   if (rc == 0) rc = parse_output(&p, root, s);
   if (rc == 0) rc = parse_run(&p, root, s);
   if (rc == 0 && s->harminv && s->n_probes == 0) {
@@ -1030,6 +1194,10 @@ void gm_yee_scene_clear(gm_yee_scene *s) {
   free(s->oblique_json);
   free(s->probes);
   free(s->fluxes);
+  for (size_t k = 0; s->dft != NULL && k < s->n_fluxes; ++k) gm_yee_dft_flux_free(s->dft[k]);
+  free(s->dft);
+  free(s->dft_save);
+  free(s->dft_subtract);
   memset(s, 0, sizeof *s);
 }
 
@@ -1078,6 +1246,31 @@ gm_status gm_yee_scene_build(gm_yee_scene *s, const char *name, gm_yee **out,
     return GM_EINVAL;
   }
   const size_t steps = (size_t)wanted;
+  /* harminv's band and window against the run: its band must lie below the Nyquist frequency
+   * of the probe samples (one per step) and its window must hold samples */
+  if (s->harminv) {
+    const double nyquist = 0.5 / dt, t_end = (double)steps * dt;
+    if (s->harminv_fmax > nyquist) {
+      snprintf(msg, cap, "%s: output.harminv.f_max: %g is above the Nyquist frequency "
+               "1/(2 dt) = %g of the probe samples", name, s->harminv_fmax, nyquist);
+      gm_yee_free(solver);
+      return GM_EINVAL;
+    }
+    if (s->harminv_after >= t_end) {
+      snprintf(msg, cap, "%s: output.harminv.after: %g is at or beyond the end of the run "
+               "(t = %g, %s)", name, s->harminv_after, t_end, run_key);
+      gm_yee_free(solver);
+      return GM_EINVAL;
+    }
+    const double window = floor((t_end - s->harminv_after) / dt) + 1;
+    if (s->harminv_basis > 0 && (double)s->harminv_basis > window) {
+      snprintf(msg, cap, "%s: output.harminv.basis: %zu basis functions for about %.0f samples "
+               "after t = %g; at most one per sample", name, s->harminv_basis, window,
+               s->harminv_after);
+      gm_yee_free(solver);
+      return GM_EINVAL;
+    }
+  }
   {
     char what[160];
     snprintf(what, sizeof what, "the records of %zu steps (%zu probe%s%s%s)", steps,
@@ -1114,6 +1307,53 @@ gm_status gm_yee_scene_build(gm_yee_scene *s, const char *name, gm_yee **out,
       gm_yee_free(solver);
       return GM_EINVAL;
     }
+  /* a flux plane inside a CPML layer measures the stretched fields, not the physical flux:
+   * refused for spectra ("dft"); the time-domain series of older scenes keep working */
+  for (size_t k = 0; s->dft_n > 0 && k < s->n_fluxes; ++k) {
+    const int a = s->fluxes[k].axis;
+    const long m = (long)s->fluxes[k].index, n = (long)s->grid.n[a];
+    for (int f = 0; f < 2; ++f) {
+      const gm_yee_boundary *b = &s->options.boundary[2 * a + f];
+      if (b->kind == GM_BOUNDARY_CPML &&
+          (f == 0 ? m <= (long)b->pml.thickness : m >= n - (long)b->pml.thickness)) {
+        snprintf(msg, cap, "%s: flux[%zu].position: %g lies in the %s CPML layer (%zu cells); "
+                 "move the plane out of it", name, k, s->fluxes[k].position,
+                 f == 0 ? "lower" : "upper", b->pml.thickness);
+        gm_yee_free(solver);
+        return GM_EINVAL;
+      }
+    }
+  }
+  if (s->dft_n > 0) {
+    const double nyquist = 0.5 / dt;
+    if (!(s->dft_fmax < nyquist)) {
+      snprintf(msg, cap, "%s: dft.f_max: %g is at or above the Nyquist frequency 1/(2 dt) = %g",
+               name, s->dft_fmax, nyquist);
+      gm_yee_free(solver);
+      return GM_EINVAL;
+    }
+    double *freq = malloc(s->dft_n * sizeof *freq);
+    s->dft = calloc(s->n_fluxes, sizeof *s->dft);
+    if (freq == NULL || s->dft == NULL) {
+      free(freq);
+      snprintf(msg, cap, "%s: dft: out of memory", name);
+      gm_yee_free(solver);
+      return GM_ENOMEM;
+    }
+    for (size_t i = 0; i < s->dft_n; ++i)
+      freq[i] = s->dft_n == 1 ? s->dft_fmin
+                              : s->dft_fmin + (s->dft_fmax - s->dft_fmin) * (double)i /
+                                                  (double)(s->dft_n - 1);
+    for (size_t k = 0; k < s->n_fluxes; ++k)
+      if (gm_yee_dft_flux_create(solver, s->fluxes[k].axis, s->fluxes[k].index, s->dft_n, freq,
+                                 &s->dft[k]) != GM_OK) {
+        snprintf(msg, cap, "%s: flux[%zu]: %s", name, k, gm_yee_errmsg(solver));
+        free(freq);
+        gm_yee_free(solver);
+        return GM_EINVAL;
+      }
+    free(freq);
+  }
   *out = solver;
   return GM_OK;
 }

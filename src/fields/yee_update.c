@@ -376,9 +376,9 @@ static void strip_field(gm_yee *s, int first, long k, long j0, long j1) {
 static void strip_e(gm_yee *s, long k, long j0, long j1) {
   const long row = (long)s->L.stride[1], plane = (long)s->L.stride[2];
   strip_field(s, 0, k, j0, j1);
-  yee_sources_apply_plane(
-      s, (size_t)((k + (long)s->L.offset[2]) * plane + (j0 + (long)s->L.offset[1]) * row),
-      (size_t)((j1 - j0) * row));
+  const size_t lo = (size_t)((k + (long)s->L.offset[2]) * plane + (j0 + (long)s->L.offset[1]) * row);
+  yee_sources_apply_plane(s, lo, (size_t)((j1 - j0) * row));
+  yee_dispersive_apply_range(s, lo, (size_t)((j1 - j0) * row));
 }
 
 int yee_wavefront_eligible(const gm_yee *s) {

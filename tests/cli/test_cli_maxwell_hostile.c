@@ -73,15 +73,16 @@ Test(cli_maxwell_hostile, threads_and_steps_out_of_range) {
 }
 
 Test(cli_maxwell_hostile, a_failed_harminv_is_a_failed_run) {
-  /* harminv from t = 1e6 in a run of 20 steps: no samples, harminv fails; the summary says
-   * which probe, and the exit status is 1 (it was 0) */
+  /* harminv from t = 1.3 in a run of 20 steps (t_end = 1.40): two samples, harminv fails; the
+   * summary says which probe, and the exit status is 1 (it was 0). (`after` beyond the end is
+   * refused before the run: test_cli_maxwell.c) */
   FILE *f = fopen(path_in_tmp("late.json"), "w");
   cr_assert_not_null(f);
   fputs("{\"grid\": {\"dim\": \"2d-tm\", \"cells\": [10, 10], \"size\": [1, 1]},"
         " \"sources\": [{\"type\": \"point\", \"component\": \"Ez\", \"position\": [0.5, 0.5],"
         " \"waveform\": {\"kind\": \"gaussian\", \"frequency\": 1, \"width\": 0.5, \"delay\": 2}}],"
         " \"probes\": [{\"name\": \"p\", \"component\": \"Ez\", \"position\": [0.3, 0.3]}],"
-        " \"output\": {\"harminv\": {\"f_min\": 0.3, \"f_max\": 2, \"after\": 1e6}},"
+        " \"output\": {\"harminv\": {\"f_min\": 0.3, \"f_max\": 2, \"after\": 1.3}},"
         " \"run\": {\"steps\": 20}}", f);
   fclose(f);
   run_output r = run_cli("maxwell run late.json --out o");

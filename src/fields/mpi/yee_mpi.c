@@ -382,6 +382,11 @@ gm_status gm_yee_mpi_create(const gm_yee_grid *grid, const gm_yee_materials *mat
       st = gm_fail(m->errmsg, sizeof m->errmsg, GM_EUNSUPPORTED,
                    "yee mpi: subpixel smoothing is not decomposed across ranks yet; turn it off "
                    "(options.smoothing = GM_YEE_SMOOTHING_NONE, scene key \"eps_averaging\": false)");
+    /* Dispersive poles (yee_dispersive.c) keep per-edge state the blocks do not split yet. */
+    if (materials != NULL && gm_yee_materials_n_dispersive(materials) > 0)
+      st = gm_fail(m->errmsg, sizeof m->errmsg, GM_EUNSUPPORTED,
+                   "yee mpi: dispersive media (Drude/Lorentz poles) are serial only; run "
+                   "without mpirun");
     if (materials != NULL) {
       const gm_yee_grid *mg = &materials->grid;
       for (int a = 0; a < m->n_axes; ++a)
@@ -883,6 +888,7 @@ gm_status gm_yee_mpi_get_energy(gm_yee_mpi *m, gm_yee_energy *en) {
   en->magnetic = 0.5 * tot[1];
   en->plain = en->electric + en->magnetic;
   en->leapfrog = 0.5 * (tot[0] + tot[2]);
+  en->polarization = 0.0; /* dispersive media are refused at create */
   return GM_OK;
 }
 
