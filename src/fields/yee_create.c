@@ -339,7 +339,7 @@ gm_status yee_create_view(const gm_yee_grid *grid, const gm_yee_materials *mater
     }
     /* a block smooths when the whole grid does (its own cells may be uniform) */
     const gm_yee_materials *gm = view ? view->materials : materials;
-    int whole_uniform = s->uniform;
+    int whole_uniform = view ? 1 : s->uniform;
     if (view != NULL)
       for (size_t c = 1; c < gm->n_cells && whole_uniform; ++c)
         whole_uniform = gm->epsilon[c] == gm->epsilon[0] && gm->mu[c] == gm->mu[0] &&
