@@ -12,9 +12,11 @@
  * solver, so fields and probes are bitwise those of a single-process run for any rank count.
  *
  * Supported across rank boundaries: PEC, PMC, CPML and periodic faces, Bloch k on axes not split
- * (dims 1 along them), materials (per cell), point sources (soft and hard, E and H), probes,
- * energy. Not yet: TF/SF plane waves, currents, Bloch k on a split axis, flux planes (they are
- * errors, never silently ignored).
+ * (dims 1 along them), materials (per cell) with subpixel smoothing (each block smooths its
+ * edges and faces from the whole grid's shapes at global indices; the off-diagonal coupling of
+ * E_a in the overlap cells comes from the neighbour with the tangential E), point sources (soft
+ * and hard, E and H), probes, energy. Not yet: TF/SF plane waves, currents, Bloch k on a split
+ * axis, flux planes (they are errors, never silently ignored).
  *
  * Every function here is collective over the communicator: all ranks call it with the same
  * arguments; a failure on any rank is returned on every rank with that rank's message

@@ -169,8 +169,33 @@ struct gm_yee {
    * ghost planes' tangential E from the neighbouring ranks; NULL for a whole-domain solver */
   void (*exchange_e)(void *ctx, gm_yee *s);
   void *exchange_ctx;
+  const struct yee_view *view; /* during yee_create_view only (yee_view.c); NULL after */
   char errmsg[YEE_ERRMSG];
 };
+
+/* An MPI subdomain seen from the whole grid (yee_view.c): subpixel smoothing of a block takes
+ * its ε̃, 1/μ̃ and off-diagonal couplings from the whole grid's shapes at the global indices, so
+ * that every coefficient rounds as in one process. */
+typedef struct yee_view {
+  const gm_yee_materials *materials; /* the whole grid's, with the shapes painted */
+  gm_yee_layout L;                   /* the whole grid's layout */
+  gm_yee_options opt;                /* the whole grid's boundaries */
+  int periodic[3];
+  long offset[3];                    /* global index of local index 0 */
+} yee_view;
+gm_status yee_create_view(const gm_yee_grid *grid, const gm_yee_materials *materials,
+                          const gm_yee_options *options, int cell_coefficients,
+                          const yee_view *view, gm_yee **out, gm_error *err);
+/* Global index of local location ijk, wrapped into [0, n) on the whole grid's periodic axes
+ * (identity without a view). */
+void yee_view_index(const gm_yee *s, const long ijk[3], long g[3]);
+/* The materials, layout and periodic flags the smoothing reads (the whole grid's with a view). */
+const gm_yee_materials *yee_view_materials(const gm_yee *s, const gm_yee_materials *local);
+const gm_yee_layout *yee_view_layout(const gm_yee *s);
+const int *yee_view_periodic(const gm_yee *s);
+/* Would the whole-grid solver let the anisotropic coupling take over E component c at global
+ * index g (in its update range, outside CPML layers)? Always 1 without a view. */
+int yee_view_eligible(const gm_yee *s, int c, const long g[3]);
 
 /* gm_yee_create, with per-location Hodge-star coefficients even when the materials are uniform
  * (cell_coefficients != 0; materials must then be non-NULL): an MPI subdomain whose cells
@@ -260,6 +285,11 @@ double yee_smooth_offdiag_at(const gm_yee_materials *m, const gm_yee_layout *L,
 gm_status yee_aniso_setup(gm_yee *s, const gm_yee_materials *m, gm_error *err);
 void yee_aniso_apply(gm_yee *s);
 void yee_aniso_sync(gm_yee *s);
+/* E_saved = E on the coupled edges, after an MPI exchange overwrote some of them (D, the sum of
+ * the increments, stays). */
+void yee_aniso_resave(gm_yee *s);
+/* The coupling's state of part (its D and E_saved, for checkpoints): the member count (0: none). */
+size_t yee_aniso_state(const gm_yee *s, int part, double **d, double **esave);
 void yee_aniso_free(gm_yee *s);
 /* 1/ε̃⁻¹_aa of a coupled edge, or 0 when the edge is not coupled. */
 double yee_aniso_eps(const gm_yee *s, int c, size_t q);

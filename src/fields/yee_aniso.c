@@ -130,8 +130,11 @@ gm_status yee_aniso_setup(gm_yee *s, const gm_yee_materials *m, gm_error *err) {
       for (size_t j = 0; j < cnt[1]; ++j)
         for (size_t i = 0; i < cnt[0]; ++i) {
           double row[3], eps, sig;
-          yee_smooth_inverse_row(m, L, s->periodic, c, (long)i, (long)j, (long)k, row, &eps,
-                                 &sig);
+          const long ijk[3] = {(long)i, (long)j, (long)k};
+          long g[3];
+          yee_view_index(s, ijk, g); /* an MPI block: the whole grid's pixel (yee_view.c) */
+          yee_smooth_inverse_row(yee_view_materials(s, m), yee_view_layout(s),
+                                 yee_view_periodic(s), c, g[0], g[1], g[2], row, &eps, &sig);
           const size_t q = yee_idx(L, (long)i, (long)j, (long)k);
           kd[c][q] = row[c];
           for (int b = 0; b < s->n_axes; ++b)
@@ -166,10 +169,16 @@ gm_status yee_aniso_setup(gm_yee *s, const gm_yee_materials *m, gm_error *err) {
               const size_t r = yee_idx(L, nb[t][0], nb[t][1], nb[t][2]);
               if (!cut[c][q] && !cut[b][r]) continue;
               if (!eligible(s, c, ijk) || !eligible(s, b, nb[t])) continue;
+              /* an MPI block: the pair as the whole grid sees it, from E_a's wrapped index */
+              long gq[3], gr[3];
+              yee_view_index(s, ijk, gq);
+              for (int x = 0; x < 3; ++x) gr[x] = gq[x] + nb[t][x] - ijk[x];
+              if (!yee_view_eligible(s, c, gq) || !yee_view_eligible(s, b, gr)) continue;
               double mid[3];
               for (int x = 0; x < 3; ++x)
-                mid[x] = 0.5 * ((double)ijk[x] + sh_c[x] + (double)nb[t][x] + sh_b[x]);
-              const double kab = yee_smooth_offdiag_at(m, L, s->periodic, mid, c, b);
+                mid[x] = 0.5 * ((double)gq[x] + sh_c[x] + (double)gr[x] + sh_b[x]);
+              const double kab = yee_smooth_offdiag_at(yee_view_materials(s, m), yee_view_layout(s),
+                                                       yee_view_periodic(s), mid, c, b);
               if (!(fabs(kab) > 1e-12 * kd[c][q])) continue;
               if (n_pairs == cap) {
                 cap = cap ? 2 * cap : 1024;
@@ -277,6 +286,22 @@ void yee_aniso_apply(gm_yee *s) {
       }
     }
   }
+}
+
+size_t yee_aniso_state(const gm_yee *s, int part, double **d, double **esave) {
+  struct yee_aniso *A = s->aniso;
+  if (A == NULL) return 0;
+  if (d) *d = A->d[part];
+  if (esave) *esave = A->esave[part];
+  return A->n;
+}
+
+void yee_aniso_resave(gm_yee *s) {
+  struct yee_aniso *A = s->aniso;
+  if (A == NULL) return;
+  for (int p = 0; p < s->n_parts; ++p)
+    for (int c = 0; c < 3; ++c)
+      for (size_t i = A->start[c]; i < A->start[c + 1]; ++i) A->esave[p][i] = s->f[p][c][A->q[i]];
 }
 
 void yee_aniso_sync(gm_yee *s) {

@@ -9,8 +9,8 @@
 #include "fields/internal.h"
 #include "geomint/yee_checkpoint.h"
 
-#define MAGIC "GMYEECK1"
-#define N_HEAD 14
+#define MAGIC "GMYEECK2" /* 2: with the subpixel coupling's D and E_saved, and the poles' state */
+#define N_HEAD 15
 
 /* The sizes that must agree between the writer and the reader. */
 static void header(const gm_yee *s, uint64_t h[N_HEAD]) {
@@ -28,6 +28,7 @@ static void header(const gm_yee *s, uint64_t h[N_HEAD]) {
   for (size_t i = 0; i < s->n_sources; ++i) h[11] += s->sources[i].rho ? s->sources[i].n_vertices : 0;
   for (size_t i = 0; i < s->n_tfsf; ++i) h[12] += s->tfsf[i].n_aux;
   for (int c = 0; c < GM_YEE_N_COMPONENTS; ++c) h[13] |= (uint64_t)s->active[c] << c;
+  h[14] = yee_aniso_state(s, 0, NULL, NULL);
 }
 
 /* Every array of the state, in file order, through one function: fn(ctx, data, count). */
@@ -46,6 +47,11 @@ static int visit_state(gm_yee *s, visit_fn fn, void *ctx) {
     if (fn(ctx, s->tfsf[i].e, n) != 0 || fn(ctx, s->tfsf[i].h, n - 1) != 0) return -1;
   }
   if (yee_dispersive_visit(s, fn, ctx) != 0) return -1;
+  for (int p = 0; p < s->n_parts; ++p) { /* D and E_saved of the smoothed couplings (yee_aniso.c) */
+    double *d = NULL, *es = NULL;
+    const size_t n = yee_aniso_state(s, p, &d, &es);
+    if (n > 0 && (fn(ctx, d, n) != 0 || fn(ctx, es, n) != 0)) return -1;
+  }
   for (size_t i = 0; i < s->n_probes; ++i) {
     yee_probe *q = &s->probes[i];
     if (fn(ctx, q->t, q->n) != 0 || fn(ctx, q->re, q->n) != 0) return -1;

@@ -188,6 +188,12 @@ gm_status gm_yee_create(const gm_yee_grid *grid, const gm_yee_materials *materia
 gm_status yee_create_with(const gm_yee_grid *grid, const gm_yee_materials *materials,
                           const gm_yee_options *options, int cell_coefficients, gm_yee **out,
                           gm_error *err) {
+  return yee_create_view(grid, materials, options, cell_coefficients, NULL, out, err);
+}
+
+gm_status yee_create_view(const gm_yee_grid *grid, const gm_yee_materials *materials,
+                          const gm_yee_options *options, int cell_coefficients,
+                          const yee_view *view, gm_yee **out, gm_error *err) {
   if (out == NULL) return gm_error_set(err, GM_EINVAL, "yee: NULL output");
   *out = NULL;
   gm_status st = yee_grid_check(grid, err);
@@ -331,10 +337,18 @@ gm_status yee_create_with(const gm_yee_grid *grid, const gm_yee_materials *mater
         s->uniform = 0;
       if (materials->sigma[c] != 0.0) s->lossy = 1;
     }
+    /* a block smooths when the whole grid does (its own cells may be uniform) */
+    const gm_yee_materials *gm = view ? view->materials : materials;
+    int whole_uniform = view ? 1 : s->uniform;
+    if (view != NULL)
+      for (size_t c = 1; c < gm->n_cells && whole_uniform; ++c)
+        whole_uniform = gm->epsilon[c] == gm->epsilon[0] && gm->mu[c] == gm->mu[0] &&
+                        gm->sigma[c] == gm->sigma[0];
     s->smoothed = o.smoothing == GM_YEE_SMOOTHING_ANISOTROPIC &&
-                  (!s->uniform || yee_geometry_has_shapes(materials));
+                  (!whole_uniform || yee_geometry_has_shapes(gm));
     if (s->smoothed) s->uniform = 0;
-    if (s->smoothed && yee_geometry_lossy(materials)) s->lossy = 1;
+    if (s->smoothed && yee_geometry_lossy(gm)) s->lossy = 1;
+    s->view = view;
   }
   if (s->uniform) {
     const double a = sigma0 * dt / (2.0 * s->eps0);
@@ -365,8 +379,12 @@ gm_status yee_create_with(const gm_yee_grid *grid, const gm_yee_materials *mater
             const size_t q = yee_idx(L, (long)i, (long)j, (long)k);
             if (c < 3) {
               double eps, sig;
+              const long ijk[3] = {(long)i, (long)j, (long)k};
+              long g[3];
+              yee_view_index(s, ijk, g);
               if (s->smoothed) {
-                yee_smooth_edge(materials, L, s->periodic, c, (long)i, (long)j, (long)k, &eps,
+                yee_smooth_edge(yee_view_materials(s, materials), yee_view_layout(s),
+                                yee_view_periodic(s), c, g[0], g[1], g[2], &eps,
                                 &sig);
               } else {
                 yee_edge_average(L, s->periodic, c, (long)i, (long)j, (long)k,
@@ -379,8 +397,12 @@ gm_status yee_create_with(const gm_yee_grid *grid, const gm_yee_materials *mater
               if (s->ca[c]) s->ca[c][q] = (1.0 - a) / (1.0 + a);
             } else {
               double inv_mu;
+              const long ijk[3] = {(long)i, (long)j, (long)k};
+              long g[3];
+              yee_view_index(s, ijk, g);
               if (s->smoothed)
-                yee_smooth_face(materials, L, s->periodic, c, (long)i, (long)j, (long)k, &inv_mu);
+                yee_smooth_face(yee_view_materials(s, materials), yee_view_layout(s),
+                                yee_view_periodic(s), c, g[0], g[1], g[2], &inv_mu);
               else
                 yee_face_average_inverse(L, s->periodic, c - 3, (long)i, (long)j, (long)k,
                                          materials->mu, &inv_mu);
@@ -395,6 +417,7 @@ gm_status yee_create_with(const gm_yee_grid *grid, const gm_yee_materials *mater
     return st;
   }
   st = yee_aniso_setup(s, materials, err);
+  s->view = NULL; /* borrowed for the set-up only */
   if (st != GM_OK) {
     gm_yee_free(s);
     return st;

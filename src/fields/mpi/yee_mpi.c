@@ -45,6 +45,8 @@ struct gm_yee_mpi {
   /* exchange: per axis and side, send and receive buffers of the tangential E planes */
   size_t plane[3];        /* entries of one plane normal to the axis (local extents) */
   double *sbuf[3][2], *rbuf[3][2];
+  int coupled;            /* subpixel smoothing with materials: E_a of the overlap cells too */
+  yee_view view;          /* the whole grid, for the blocks' smoothing (yee_view.c) */
   size_t bytes_per_step;
   size_t n_sources;
   size_t n_probes;
@@ -104,14 +106,16 @@ static void plane_copy(gm_yee *s, int part, int c, int a, long v, double *buf, i
     }
 }
 
-/* The planes of axis a in a buffer: for each part, each active E component tangential to a. */
-static size_t pack_planes(gm_yee_mpi *m, int a, long v, double *buf, int pack) {
+/* The planes of axis a in a buffer: for each part, each active E component tangential to a on
+ * vertex plane v, and with subpixel smoothing also E_a on cell plane v_cell (its off-diagonal
+ * coupling reaches D on the overlap plane, which a block does not update: see exchange_e). */
+static size_t pack_planes(gm_yee_mpi *m, int a, long v, long v_cell, double *buf, int pack) {
   gm_yee *s = m->local;
   size_t off = 0;
   for (int p = 0; p < s->n_parts; ++p)
     for (int c = 0; c < 3; ++c) {
-      if (c == a || !s->active[c]) continue;
-      plane_copy(s, p, c, a, v, buf + off, pack);
+      if (!s->active[c] || (c == a && !m->coupled)) continue;
+      plane_copy(s, p, c, a, c == a ? v_cell : v, buf + off, pack);
       off += m->plane[a];
     }
   return off;
@@ -120,7 +124,11 @@ static size_t pack_planes(gm_yee_mpi *m, int a, long v, double *buf, int pack) {
 /* After the E half step: tangential E on the outer vertex planes from the neighbours, one axis
  * after the other (non-blocking sends and receives within an axis). With n local cells (vertex
  * planes 0..n), plane 0 is the low overlap plane (global c0 − 1) and plane n the high one
- * (global c1 + 1); the neighbours need global c0 + 1 (local 2) and c1 − 1 (local n − 2). */
+ * (global c1 + 1); the neighbours need global c0 + 1 (local 2) and c1 − 1 (local n − 2).
+ * With subpixel smoothing the off-diagonal coupling (yee_aniso.c) of E_a in the overlap cells
+ * (local cells 0 and n − 1) misses D on the overlap planes: those E_a come from the neighbours
+ * too (their cells c0 and c1 − 1: local 1 and n − 2), and E_saved is reset to the received E so
+ * that D keeps summing the right increments. Every other value is computed as in one process. */
 static void exchange_e(void *ctx, gm_yee *s) {
   gm_yee_mpi *m = ctx;
   for (int a = 0; a < m->n_axes; ++a) {
@@ -130,7 +138,7 @@ static void exchange_e(void *ctx, gm_yee *s) {
     size_t cnt = 0;
     for (int side = 0; side < 2; ++side) {
       const long v = side == 0 ? 2 : n - 2;
-      cnt = pack_planes(m, a, v, m->sbuf[a][side], 1);
+      cnt = pack_planes(m, a, v, side == 0 ? 1 : n - 2, m->sbuf[a][side], 1);
     }
     for (int side = 0; side < 2; ++side)
       MPI_Irecv(m->rbuf[a][side], (int)cnt, MPI_DOUBLE, m->nb[a][side], 1 - side, m->comm,
@@ -142,8 +150,9 @@ static void exchange_e(void *ctx, gm_yee *s) {
     MPI_Waitall(4, req, MPI_STATUSES_IGNORE);
     for (int side = 0; side < 2; ++side)
       if (m->nb[a][side] != MPI_PROC_NULL)
-        pack_planes(m, a, side == 0 ? 0 : n, m->rbuf[a][side], 0);
+        pack_planes(m, a, side == 0 ? 0 : n, side == 0 ? 0 : n - 1, m->rbuf[a][side], 0);
   }
+  yee_aniso_resave(s);
 }
 
 /* ---- creation ---------------------------------------------------------------------------- */
@@ -317,7 +326,19 @@ static gm_status make_local(gm_yee_mpi *m, const gm_yee_materials *mat, gm_error
     }
     free(buf);
   }
-  if (st == GM_OK) st = yee_create_with(&lg, lm, &lo, cells, &m->local, err);
+  const yee_view *view = NULL;
+  if (mat != NULL && m->opt.smoothing == GM_YEE_SMOOTHING_ANISOTROPIC) {
+    /* smoothing reads the whole grid's shapes at global indices (yee_view.c) */
+    gm_yee_mpi_global_layout(m, &m->view.L);
+    m->view.materials = mat;
+    m->view.opt = m->opt;
+    for (int a = 0; a < 3; ++a) {
+      m->view.periodic[a] = m->periodic[a];
+      m->view.offset[a] = (long)m->c0[a] - (long)m->ov[a][0];
+    }
+    view = &m->view;
+  }
+  if (st == GM_OK) st = yee_create_view(&lg, lm, &lo, cells, view, &m->local, err);
   gm_yee_materials_free(lm);
   if (st != GM_OK) snprintf(m->errmsg, sizeof m->errmsg, "%s", err->message);
   return st;
@@ -330,7 +351,7 @@ static gm_status alloc_buffers(gm_yee_mpi *m) {
     const int b = (a + 1) % 3, d = (a + 2) % 3;
     m->plane[a] = s->L.extent[b] * s->L.extent[d];
     size_t n_comp = 0;
-    for (int c = 0; c < 3; ++c) n_comp += c != a && s->active[c];
+    for (int c = 0; c < 3; ++c) n_comp += (c != a || m->coupled) && s->active[c];
     const size_t len = m->plane[a] * n_comp * (size_t)s->n_parts;
     for (int side = 0; side < 2; ++side) {
       m->sbuf[a][side] = malloc(len * sizeof(double) + 1);
@@ -376,12 +397,9 @@ gm_status gm_yee_mpi_create(const gm_yee_grid *grid, const gm_yee_materials *mat
                    "yee: time step %.17g is above the Courant limit %.17g of this grid "
                    "(dt <= 1/(c_max sqrt(sum 1/h^2)))",
                    m->opt.dt, dt_max);
-    /* The anisotropic subpixel average couples E on a cut edge to D on its neighbours'
-     * edges (yee_aniso.c), which a block does not have across its faces: refused, not dropped. */
-    if (materials != NULL && m->opt.smoothing != GM_YEE_SMOOTHING_NONE)
-      st = gm_fail(m->errmsg, sizeof m->errmsg, GM_EUNSUPPORTED,
-                   "yee mpi: subpixel smoothing is not decomposed across ranks yet; turn it off "
-                   "(options.smoothing = GM_YEE_SMOOTHING_NONE, scene key \"eps_averaging\": false)");
+    /* subpixel smoothing: each block reads the whole grid's shapes (make_local) */
+    m->coupled = materials != NULL && m->opt.smoothing == GM_YEE_SMOOTHING_ANISOTROPIC &&
+                 m->n_axes >= 2;
     /* Dispersive poles (yee_dispersive.c) keep per-edge state the blocks do not split yet. */
     if (materials != NULL && gm_yee_materials_n_dispersive(materials) > 0)
       st = gm_fail(m->errmsg, sizeof m->errmsg, GM_EUNSUPPORTED,
@@ -482,7 +500,8 @@ void gm_yee_mpi_global_layout(const gm_yee_mpi *m, gm_yee_layout *L) {
     stride *= L->extent[a];
   }
   L->size = stride;
-  L->complex_fields = m->local->n_parts == 2;
+  L->complex_fields = m->opt.bloch_k[0] != 0.0 || m->opt.bloch_k[1] != 0.0 ||
+                      m->opt.bloch_k[2] != 0.0; /* as gm_yee_create (also before m->local) */
 }
 
 /* The whole grid's location of c nearest to x (yee_locate's rule); -1 when outside. */
