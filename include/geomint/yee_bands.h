@@ -20,8 +20,8 @@ extern "C" {
 typedef struct gm_yee_bands_run {
   double f_min, f_max; /* band searched (cycles per unit time); 0 <= f_min < f_max required */
   double time;         /* analysed time after the sources end; <= 0: 80 / f_max */
-  size_t n_sources;    /* random dipoles (default 3) */
-  size_t n_probes;     /* random probes (default 4, 1..64) */
+  size_t n_sources;    /* random dipoles (default 6) */
+  size_t n_probes;     /* random probes (default 8, 1..64) */
   uint64_t seed;       /* positions and phases (default 7) */
   size_t n_basis;      /* harminv basis per probe; 0: from the signal (1.1 per Fourier bin of
                           the band, at least 4 per band asked for + 8) */

@@ -33,7 +33,7 @@ static const char usage[] =
     "  --f-min/--f-max  band searched (default: the scene's output.harminv band; f-min 0.05\n"
     "                 f-max without it)\n"
     "  --time T       analysed time per k after the sources (default 80/f_max)\n"
-    "  --probes P, --sources S, --seed S   (defaults 4, 3, 7)\n"
+    "  --probes P, --sources S, --seed S   (defaults 8, 6, 7)\n"
     "  --out DIR      writes bands.csv and bands.png (default maxwell-bands)\n\n"
     "Exit status: 0 success, 1 a failed run, 2 bad input.\n";
 
@@ -214,7 +214,7 @@ int mx_bands_main(int argc, char **argv) {
   const char *out_dir = "maxwell-bands", *kpath_s = NULL, *kx_s = NULL, *ky_s = NULL,
              *kz_s = NULL;
   int json = 0, no_plot = 0;
-  size_t points = 25, n_bands = 5, probes = 4, sources = 3, seed = 7;
+  size_t points = 25, n_bands = 5, probes = 8, sources = 6, seed = 7;
   double f_min = NAN, f_max = NAN, time = 0;
   cli_option options[] = {{"--out", CLI_ARG_STRING, &out_dir, 0},
                           {"--json", CLI_ARG_FLAG, &json, 0},
