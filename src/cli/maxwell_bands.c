@@ -335,6 +335,15 @@ int mx_bands_main(int argc, char **argv) {
                 err.message);
       status = i == 0 && st == GM_EINVAL ? CLI_EXIT_USAGE : CLI_EXIT_FAILURE;
     } else {
+      /* k = 0: uniform fields solve Maxwell's equations in any periodic medium, so the first
+       * band is ω = 0 there (as MPB lists it); it is no resonance harminv could see. Listed
+       * so that band indices (and gaps) line up along the path. */
+      double *fi = f + i * n_bands;
+      if (kp->k[i][0] == 0 && kp->k[i][1] == 0 && kp->k[i][2] == 0) {
+        memmove(fi + 1, fi, (n_bands - 1) * sizeof *fi);
+        fi[0] = 0;
+        if (info[i].n_lost > 0) info[i].n_lost--;
+      }
       lost += info[i].n_lost;
       extra += info[i].n_extra;
     }
