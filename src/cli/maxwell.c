@@ -8,6 +8,7 @@
 int mx_run_main(int argc, char **argv);    /* maxwell_run.c */
 int mx_cavity_main(int argc, char **argv); /* maxwell_cavity.c */
 int mx_e4_main(int argc, char **argv);     /* maxwell_e4.c */
+int mx_bands_main(int argc, char **argv);  /* maxwell_bands.c */
 
 static const char usage[] =
     "usage: geomint maxwell run SCENE.json [--out DIR] [--json] [--check] [--threads K]\n"
@@ -18,6 +19,8 @@ static const char usage[] =
     "                           SIGINT/SIGTERM write a checkpoint and stop)\n"
     "       geomint maxwell cavity [--dim 2|3] [--n N] [--periods P] [--out DIR] [--json]\n"
     "                              [--threads K]\n"
+    "       geomint maxwell bands SCENE.json --k-path G,X,M,G [--points N] [--bands B] ...\n"
+    "                              (band structure of a periodic cell; see 'bands --help')\n"
     "       geomint maxwell e4 [--n N] [--time T] [--seed S] [--out DIR] [--json] [--threads K]\n"
     "       geomint maxwell mesh FILE.msh | --rect NX [--avi] ... (see 'maxwell mesh --help')\n"
     "       geomint maxwell mesh-cavity [--shape box|cylinder|sphere] [--levels K] ...\n\n"
@@ -69,9 +72,10 @@ static int maxwell_main(int argc, char **argv) {
   if (strcmp(argv[0], "run") == 0) return mx_run_main(argc - 1, argv + 1);
   if (strcmp(argv[0], "cavity") == 0) return mx_cavity_main(argc - 1, argv + 1);
   if (strcmp(argv[0], "e4") == 0) return mx_e4_main(argc - 1, argv + 1);
+  if (strcmp(argv[0], "bands") == 0) return mx_bands_main(argc - 1, argv + 1);
   if (strcmp(argv[0], "mesh") == 0) return cli_maxwell_mesh(argc - 1, argv + 1);
   if (strcmp(argv[0], "mesh-cavity") == 0) return cli_maxwell_mesh_cavity(argc - 1, argv + 1);
-  cli_error("maxwell", "unknown subcommand '%s' (run, cavity, e4, mesh, mesh-cavity); see 'geomint maxwell --help'",
+  cli_error("maxwell", "unknown subcommand '%s' (run, cavity, bands, e4, mesh, mesh-cavity); see 'geomint maxwell --help'",
             argv[0]);
   return CLI_EXIT_USAGE;
 }
