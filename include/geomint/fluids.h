@@ -286,15 +286,21 @@ typedef struct gm_fluid_flow_result {
   double div_max;
 } gm_fluid_flow_result;
 
-/* Taylor–Green vortex ψ = sin x sin y on the periodic square [0, 2π]² (acute mesh, n cells
- * along x), midpoint scheme with viscosity nu: `measured` = −ln(E(T)/E0)/(2T), against exact
+/* The square [0, L]² as a triangular lattice for periodic pairs: n cells along x, an even number
+ * of rows ≈ 2n/√3 (near-equilateral triangles), every other row shifted by half a cell, so the
+ * sides "left" and "right" are zigzags that match by translation, as do "bottom" and "top";
+ * identified, every vertex has six triangles (no right triangles at the seams). */
+gm_status gm_fluid_periodic_square_mesh(double L, size_t n, gm_mesh **mesh,
+                                        gm_fluid_groups **groups, gm_error *err);
+/* Taylor–Green vortex ψ = sin x sin y on the periodic square [0, 2π]²
+ * (gm_fluid_periodic_square_mesh, n cells along x), with viscosity nu (scheme GM_FLUID_MIDPOINT or GM_FLUID_SEED): `measured` = −ln(E(T)/E0)/(2T), against exact
  * 2ν (the amplitude decays as exp(−2νt)). */
-gm_status gm_fluid_taylor_green(size_t n, double nu, double dt, size_t steps,
+gm_status gm_fluid_taylor_green(gm_fluid_scheme scheme, size_t n, double nu, double dt, size_t steps,
                                 gm_fluid_flow_result *r, gm_error *err);
 /* Inviscid double shear layer on [0, 2π]² (Bell, Colella & Glaz, J. Comput. Phys. 85 (1989)
  * 257–283: u = tanh((y − π/2)/δ) below y = π, tanh((3π/2 − y)/δ) above, v = ε sin x, δ = π/15,
- * ε = 0.05), midpoint scheme, ν = 0. */
-gm_status gm_fluid_double_shear(size_t n, double dt, size_t steps, gm_fluid_flow_result *r,
+ * ε = 0.05), ν = 0 (either scheme; the seed scheme does not conserve energy). */
+gm_status gm_fluid_double_shear(gm_fluid_scheme scheme, size_t n, double dt, size_t steps, gm_fluid_flow_result *r,
                                 gm_error *err);
 /* Rossby–Haurwitz wave of wavenumber 4 on the unit sphere rotating at Ω = 1 (icosphere of the
  * given subdivisions), ω = K = 7.848e-6/7.292e-5 (Williamson et al. 1992, test 6, in units of

@@ -201,6 +201,167 @@ gm_status gm_fluid_manifold_check(const gm_complex *cx, char *msg, size_t msg_si
   return GM_OK;
 }
 
+
+/* a without row and column 0 (the gauge vertex); idx maps the other vertices to 0..n−2 */
+static gm_status restrict_gauge(const gm_csr *a, const size_t *idx, gm_csr **out) {
+  const size_t nv = a->n_rows;
+  size_t nnz = 0;
+  for (size_t r = 1; r < nv; ++r)
+    for (size_t k = a->row_start[r]; k < a->row_start[r + 1]; ++k) nnz += a->col[k] != 0;
+  gm_status st = gm_csr_create(nv - 1, nv - 1, nnz, out);
+  if (st) return st;
+  gm_csr *m = *out;
+  size_t p = 0;
+  for (size_t r = 1; r < nv; ++r) {
+    m->row_start[r - 1] = p;
+    for (size_t k = a->row_start[r]; k < a->row_start[r + 1]; ++k) {
+      if (a->col[k] == 0) continue;
+      m->col[p] = idx[a->col[k]];
+      m->val[p++] = a->val[k];
+    }
+  }
+  m->row_start[nv - 1] = p;
+  return GM_OK;
+}
+
+typedef struct qedge {
+  size_t a, b, e; /* solver vertices a < b, mesh edge e */
+} qedge;
+
+static int cmp_qedge(const void *p, const void *q) {
+  const qedge *x = p, *y = q;
+  if (x->a != y->a) return x->a < y->a ? -1 : 1;
+  if (x->b != y->b) return x->b < y->b ? -1 : 1;
+  return (x->e > y->e) - (x->e < y->e);
+}
+
+/* What the seed scheme needs besides L: the edges of the quotient (a mesh edge and its periodic
+ * image are one; ⋆1 and the dual length summed over the copies), U = Sψ the tangential velocity
+ * u_T·e⃗ averaged over the cofaces with the DPP-flat weights |⋆e ∩ T|/|⋆e| (Hirani 2003 §5.5)
+ * and u = ∇ψ × n, the two matrices of the semi-implicit steps (153, 154) on the free vertices,
+ * and h_min for the Courant bound of the explicit half step. Called before f->tri is remapped. */
+static gm_status seed_parts(gm_fluid *f, char *msg, size_t msg_size) {
+  const size_t nm_e = gm_complex_count(f->cx, 1), sd = f->sdim, nv = f->nv;
+  const size_t *me = gm_complex_simplices(f->cx, 1);
+  const double *xm = gm_complex_coordinates(f->cx), *s1 = gm_geometry_hodge_star(f->geo, 1),
+               *dual1 = gm_geometry_dual_volumes(f->geo, 1);
+  gm_status st = GM_OK;
+  gm_error sub;
+  qedge *q = malloc((nm_e ? nm_e : 1) * sizeof *q);
+  size_t *qof = malloc((nm_e ? nm_e : 1) * sizeof *qof);
+  double *sgn = malloc((nm_e ? nm_e : 1) * sizeof *sgn), *qdual = NULL, *inv0 = NULL;
+  size_t *ri = NULL, *ci = NULL;
+  double *vv = NULL;
+  gm_csr *LD = NULL, *LDL = NULL, *M = NULL, *Mr = NULL;
+  if (!q || !qof || !sgn) goto nomem;
+  for (size_t e = 0; e < nm_e; ++e) {
+    size_t a = f->rep ? f->rep[me[2 * e]] : me[2 * e], b = f->rep ? f->rep[me[2 * e + 1]] : me[2 * e + 1];
+    sgn[e] = a < b ? 1.0 : -1.0;
+    q[e].a = a < b ? a : b;
+    q[e].b = a < b ? b : a;
+    q[e].e = e;
+    double h2 = 0.0;
+    for (size_t c = 0; c < sd; ++c) {
+      double d = xm[sd * me[2 * e] + c] - xm[sd * me[2 * e + 1] + c];
+      h2 += d * d;
+    }
+    f->h_min = fmin(f->h_min, sqrt(h2));
+  }
+  qsort(q, nm_e, sizeof *q, cmp_qedge);
+  size_t ne = 0;
+  for (size_t k = 0; k < nm_e; ++k) {
+    if (k == 0 || q[k].a != q[k - 1].a || q[k].b != q[k - 1].b) ++ne;
+    qof[q[k].e] = ne - 1;
+  }
+  f->ne = ne;
+  f->edge_own = malloc(2 * ne * sizeof *f->edge_own);
+  f->star1 = calloc(ne, sizeof *f->star1);
+  qdual = calloc(ne, sizeof *qdual);
+  f->u_edge = calloc(ne, sizeof *f->u_edge);
+  if (!f->edge_own || !f->star1 || !qdual || !f->u_edge) goto nomem;
+  for (size_t k = 0; k < nm_e; ++k) {
+    size_t e = q[k].e, qe = qof[e];
+    f->edge_own[2 * qe] = q[k].a;
+    f->edge_own[2 * qe + 1] = q[k].b;
+    f->star1[qe] += s1[e];
+    qdual[qe] += dual1[e];
+  }
+  f->edge = f->edge_own;
+  /* S: row = quotient edge, columns = solver vertices */
+  const size_t n3 = 9 * f->nt;
+  ri = malloc(n3 * sizeof *ri);
+  ci = malloc(n3 * sizeof *ci);
+  vv = malloc(n3 * sizeof *vv);
+  if (!ri || !ci || !vv) goto nomem;
+  size_t p = 0;
+  for (size_t t = 0; t < f->nt; ++t) {
+    size_t le[3];
+    double pieces[3];
+    gm_complex_local_faces(f->cx, t, 1, le);
+    gm_geometry_dual_pieces(f->geo, t, 1, pieces);
+    double n[3] = {0.0, 0.0, 1.0};
+    if (sd == 3) memcpy(n, f->normal + 3 * t, sizeof n);
+    for (int j = 0; j < 3; ++j) {
+      size_t e = le[j], qe = qof[e];
+      double ev[3] = {0};
+      for (size_t c = 0; c < sd; ++c) ev[c] = xm[sd * me[2 * e + 1] + c] - xm[sd * me[2 * e] + c];
+      double w = sgn[e] * pieces[j] / qdual[qe];
+      for (int k = 0; k < 3; ++k) {
+        const double *g = f->grad + (3 * t + (size_t)k) * sd;
+        double gz = sd == 3 ? g[2] : 0.0;
+        double u[3] = {g[1] * n[2] - gz * n[1], gz * n[0] - g[0] * n[2],
+                       g[0] * n[1] - g[1] * n[0]}; /* ∇λ_k × n */
+        ri[p] = qe;
+        ci[p] = f->rep ? f->rep[f->tri[3 * t + (size_t)k]] : f->tri[3 * t + (size_t)k];
+        vv[p++] = w * (u[0] * ev[0] + u[1] * ev[1] + u[2] * ev[2]);
+      }
+    }
+  }
+  st = gm_csr_from_triplets(ne, nv, p, ri, ci, vv, &f->S, &sub);
+  if (st) goto nomem;
+  /* (L + α ν L ⋆0⁻¹ L) on the free vertices, α = dt/2 and dt; b = 0 and ψ_bc = 0 (no walls) */
+  inv0 = malloc(nv * sizeof *inv0);
+  f->c_half = calloc(nv, sizeof *f->c_half);
+  f->c_full = calloc(nv, sizeof *f->c_full);
+  if (!inv0 || !f->c_half || !f->c_full) goto nomem;
+  for (size_t v = 0; v < nv; ++v) inv0[v] = 1.0 / f->star0[v];
+  if ((st = gm_csr_copy(f->L, &LD))) goto nomem;
+  gm_csr_scale_cols(LD, inv0);
+  if ((st = gm_csr_multiply(LD, f->L, &LDL))) goto nomem;
+  for (int pass = 0; pass < 2; ++pass) {
+    double alpha = (pass == 0 ? 0.5 : 1.0) * f->opt.dt * f->opt.nu;
+    if ((st = gm_csr_add(1.0, f->L, alpha, LDL, &M))) goto nomem;
+    if ((st = restrict_gauge(M, f->free_of, &Mr))) goto nomem;
+    gm_csr_free(M);
+    M = NULL;
+    st = gm_sparse_cholesky_create(Mr, pass == 0 ? &f->m_half : &f->m_full, &sub);
+    gm_csr_free(Mr);
+    Mr = NULL;
+    if (st) {
+      snprintf(msg, msg_size, "fluid: vorticity matrix: %s", sub.message);
+      goto out;
+    }
+  }
+  goto out;
+nomem:
+  if (!st) st = GM_ENOMEM;
+  snprintf(msg, msg_size, "fluid: out of memory (or assembling a matrix failed)");
+out:
+  free(q);
+  free(qof);
+  free(sgn);
+  free(qdual);
+  free(inv0);
+  free(ri);
+  free(ci);
+  free(vv);
+  gm_csr_free(LD);
+  gm_csr_free(LDL);
+  gm_csr_free(M);
+  gm_csr_free(Mr);
+  return st;
+}
+
 #define ALLOC(ptr, n)                                 \
   do {                                                \
     (ptr) = calloc((n) > 0 ? (n) : 1, sizeof *(ptr)); \
@@ -246,10 +407,12 @@ gm_status gm_fluid_create_closed(gm_fluid *f, size_t *rep, size_t nq, char *msg,
                    e1[0] * e2[1] - e1[1] * e2[0]};
     double a2 = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     f->area[t] = 0.5 * a2;
-    double s = sd == 3 ? (double)gm_simplex_sign(f->cx, 2, t) : (n[2] > 0 ? 1.0 : -1.0);
-    for (int c = 0; c < 3; ++c) n[c] *= s / a2; /* the orientation's unit normal (ẑ in the plane) */
-    if (sd == 3) memcpy(f->normal + 3 * t, n, sizeof n);
-    for (int k = 0; k < 3; ++k) { /* ∇λ_k = n × (p_{k+2} − p_{k+1}) / (2|T|) */
+    for (int c = 0; c < 3; ++c) n[c] /= a2; /* the normal for which p0, p1, p2 turn ccw */
+    /* the orientation's unit normal (the complex's sign; ẑ in the plane) for n·(∇a × ∇b) */
+    double s = sd == 3 ? (double)gm_simplex_sign(f->cx, 2, t) : 1.0;
+    if (sd == 3)
+      for (int c = 0; c < 3; ++c) f->normal[3 * t + (size_t)c] = s * n[c];
+    for (int k = 0; k < 3; ++k) { /* ∇λ_k = n × (p_{k+2} − p_{k+1}) / (2|T|), n of the order */
       const double *q1 = xm + sd * tv[(k + 1) % 3], *q2 = xm + sd * tv[(k + 2) % 3];
       double e[3] = {0};
       for (size_t c = 0; c < sd; ++c) e[c] = q2[c] - q1[c];
@@ -337,28 +500,11 @@ gm_status gm_fluid_create_closed(gm_fluid *f, size_t *rep, size_t nq, char *msg,
       f->coriolis[v] = r > 0 ? 2.0 * opt->rotation * p[2] / r : 0.0;
     }
   /* Poisson (ψ from Γ on the free vertices) */
-  {
-    size_t *idx = f->free_of;
-    size_t nnz = 0;
-    for (size_t r = 1; r < nv; ++r)
-      for (size_t k = f->L->row_start[r]; k < f->L->row_start[r + 1]; ++k) nnz += f->L->col[k] != 0;
-    st = gm_csr_create(nv - 1, nv - 1, nnz, &Mr);
-    if (st) goto nomem;
-    size_t p = 0;
-    for (size_t r = 1; r < nv; ++r) {
-      Mr->row_start[r - 1] = p;
-      for (size_t k = f->L->row_start[r]; k < f->L->row_start[r + 1]; ++k) {
-        if (f->L->col[k] == 0) continue;
-        Mr->col[p] = idx[f->L->col[k]];
-        Mr->val[p++] = f->L->val[k];
-      }
-    }
-    Mr->row_start[nv - 1] = p;
-    st = gm_sparse_cholesky_create(Mr, &f->poisson, &sub);
-    if (st) {
-      snprintf(msg, msg_size, "fluid: Poisson matrix: %s", sub.message);
-      goto fail;
-    }
+  if ((st = restrict_gauge(f->L, f->free_of, &Mr))) goto nomem;
+  st = gm_sparse_cholesky_create(Mr, &f->poisson, &sub);
+  if (st) {
+    snprintf(msg, msg_size, "fluid: Poisson matrix: %s", sub.message);
+    goto fail;
   }
   /* viscous part of the midpoint rule: (⋆0 + ν dt/2 L) ζ^{n+1} = ... (SPD) */
   double *d = NULL;
@@ -394,6 +540,7 @@ gm_status gm_fluid_create_closed(gm_fluid *f, size_t *rep, size_t nq, char *msg,
   }
   f->dt_bound = INFINITY;
   f->h_min = INFINITY;
+  if (opt->scheme == GM_FLUID_SEED && (st = seed_parts(f, msg, msg_size))) goto fail;
   f->tri = f->tri_own; /* solver vertices from here on; grad keeps the unrolled geometry */
   goto fail; /* normal exit through the cleanup below, st == GM_OK */
 nomem:

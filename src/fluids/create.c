@@ -35,6 +35,7 @@ void gm_fluid_free(gm_fluid *f) {
   gm_csr_free(f->S);
   free(f->rep);
   free(f->tri_own);
+  free(f->edge_own);
   free(f->xq);
   free(f->normal);
   free(f->coriolis);
@@ -195,11 +196,6 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
         mesh->dim, mesh->N);
   int closed = mesh->N == 3;
   for (size_t i = 0; i < n_bcs; ++i) closed |= bcs[i].kind == GM_FLUID_PERIODIC;
-  if (closed && opt.scheme != GM_FLUID_MIDPOINT)
-    return gm_error_set(err, GM_EUNSUPPORTED,
-                        "fluid: %s needs the midpoint scheme (the seed scheme's edge-based "
-                        "convection is not implemented on the quotient complex)",
-                        mesh->N == 3 ? "a surface in R^3" : "a periodic domain");
   if (!closed && opt.scheme == GM_FLUID_MIDPOINT && opt.nu != 0.0)
     return gm_error_set(err, GM_EINVAL,
                         "fluid: the midpoint scheme with walls is inviscid: nu must be 0 (got %g); "

@@ -25,17 +25,81 @@ static double mean_edge(const gm_complex *cx) {
   return s / (double)ne;
 }
 
-/* The periodic square [0, 2π]² with n cells along x (acute pattern, an even number of rows so
- * that the top row matches the bottom one), both pairs of sides identified. */
+gm_status gm_fluid_periodic_square_mesh(double L, size_t n, gm_mesh **mesh,
+                                        gm_fluid_groups **groups, gm_error *err) {
+  if (!mesh || !groups) return gm_error_set(err, GM_EINVAL, "periodic square: NULL argument");
+  *mesh = NULL;
+  *groups = NULL;
+  if (!(L > 0) || !isfinite(L) || n < 3 || n > 10000)
+    return gm_error_set(err, GM_EINVAL, "periodic square: L = %g > 0 and n = %zu in [3, 10000]", L,
+                        n);
+  size_t ny = 2 * (size_t)floor((double)n / sqrt(3.0) + 0.5); /* even: the top row matches row 0 */
+  if (ny < 4) ny = 4;
+  const size_t nx1 = n + 1, nv = nx1 * (ny + 1), nt = 2 * n * ny;
+  const double hx = L / (double)n, hy = L / (double)ny;
+  gm_status st = gm_mesh_create(2, nv, 2, nt, mesh);
+  if (st) return gm_error_set(err, st, "periodic square: out of memory");
+  gm_mesh *m = *mesh;
+  for (size_t j = 0; j <= ny; ++j)
+    for (size_t i = 0; i <= n; ++i) {
+      m->x[2 * (j * nx1 + i)] = ((double)i + 0.5 * (double)(j % 2)) * hx;
+      m->x[2 * (j * nx1 + i) + 1] = (double)j * hy;
+    }
+  size_t *c = m->cells;
+#define V(i, j) ((j) * nx1 + (i))
+  for (size_t j = 0; j < ny; ++j)
+    for (size_t i = 0; i < n; ++i) {
+      if (j % 2 == 0) { /* row j+1 shifted right by half a cell */
+        size_t t[6] = {V(i, j), V(i + 1, j), V(i, j + 1), V(i + 1, j), V(i + 1, j + 1), V(i, j + 1)};
+        memcpy(c, t, sizeof t);
+      } else { /* row j shifted */
+        size_t t[6] = {V(i, j), V(i + 1, j + 1), V(i, j + 1), V(i, j), V(i + 1, j), V(i + 1, j + 1)};
+        memcpy(c, t, sizeof t);
+      }
+      c += 6;
+    }
+  /* groups: bottom (row 0), right (column n, a zigzag), top (row ny), left (column 0) */
+  gm_fluid_groups *g = calloc(1, sizeof *g);
+  const size_t ne = 2 * n + 2 * ny;
+  if (g) {
+    g->names = calloc(4, sizeof *g->names);
+    g->vertices = calloc(2 * ne, sizeof *g->vertices);
+    g->group = calloc(ne, sizeof *g->group);
+  }
+  if (!g || !g->names || !g->vertices || !g->group) {
+    gm_fluid_groups_free(g);
+    gm_mesh_free(m);
+    *mesh = NULL;
+    return gm_error_set(err, GM_ENOMEM, "periodic square: out of memory");
+  }
+  static const char *names[4] = {"bottom", "right", "top", "left"};
+  for (int k = 0; k < 4; ++k) snprintf(g->names[k], GM_FLUID_NAME_SIZE, "%s", names[k]);
+  g->n_groups = 4;
+  g->n_edges = ne;
+  size_t k = 0;
+  for (size_t i = 0; i < n; ++i, ++k) {
+    g->vertices[2 * k] = V(i, 0), g->vertices[2 * k + 1] = V(i + 1, 0), g->group[k] = 0;
+  }
+  for (size_t i = 0; i < n; ++i, ++k) {
+    g->vertices[2 * k] = V(i, ny), g->vertices[2 * k + 1] = V(i + 1, ny), g->group[k] = 2;
+  }
+  for (size_t j = 0; j < ny; ++j, ++k) {
+    g->vertices[2 * k] = V(n, j), g->vertices[2 * k + 1] = V(n, j + 1), g->group[k] = 1;
+  }
+  for (size_t j = 0; j < ny; ++j, ++k) {
+    g->vertices[2 * k] = V(0, j), g->vertices[2 * k + 1] = V(0, j + 1), g->group[k] = 3;
+  }
+#undef V
+  *groups = g;
+  return GM_OK;
+}
+
+/* The periodic square [0, 2π]² of gm_fluid_periodic_square_mesh, both pairs identified. */
 static gm_status periodic_square(size_t n, const gm_fluid_options *o, gm_fluid **f,
                                  gm_error *err) {
-  const double L = 2.0 * GM_PI;
-  size_t ny = 2 * (size_t)floor((double)n / sqrt(3.0) + 0.5);
-  if (ny < 4) ny = 4;
   gm_mesh *m = NULL;
   gm_fluid_groups *g = NULL;
-  gm_status st = gm_mesh_rectangle(0, L, 0, L, n, ny, GM_DIAGONAL_ACUTE, &m, err);
-  if (!st) st = gm_fluid_groups_rectangle(m, &g, err);
+  gm_status st = gm_fluid_periodic_square_mesh(2.0 * GM_PI, n, &m, &g, err);
   if (!st) {
     gm_fluid_bc bc[2];
     memset(bc, 0, sizeof bc);
@@ -113,14 +177,14 @@ static double taylor_green_psi(const double *x, const void *ctx) {
   return sin(x[0]) * sin(x[1]);
 }
 
-gm_status gm_fluid_taylor_green(size_t n, double nu, double dt, size_t steps,
+gm_status gm_fluid_taylor_green(gm_fluid_scheme scheme, size_t n, double nu, double dt, size_t steps,
                                 gm_fluid_flow_result *r, gm_error *err) {
   if (!r || n < 4 || n > 4000 || !(nu >= 0) || !(dt > 0) || steps > 100000000)
     return gm_error_set(err, GM_EINVAL,
                         "taylor-green: n = %zu in [4, 4000], nu >= 0, dt > 0 required", n);
   memset(r, 0, sizeof *r);
   gm_fluid_options o = gm_fluid_defaults();
-  o.scheme = GM_FLUID_MIDPOINT;
+  o.scheme = scheme;
   o.nu = nu;
   o.dt = dt;
   gm_fluid *f = NULL;
@@ -156,13 +220,13 @@ static double double_shear_psi(const double *x, const void *ctx) {
   return p + eps * cos(x[0]);
 }
 
-gm_status gm_fluid_double_shear(size_t n, double dt, size_t steps, gm_fluid_flow_result *r,
+gm_status gm_fluid_double_shear(gm_fluid_scheme scheme, size_t n, double dt, size_t steps, gm_fluid_flow_result *r,
                                 gm_error *err) {
   if (!r || n < 4 || n > 4000 || !(dt > 0) || steps > 100000000)
     return gm_error_set(err, GM_EINVAL, "double shear: n = %zu in [4, 4000], dt > 0 required", n);
   memset(r, 0, sizeof *r);
   gm_fluid_options o = gm_fluid_defaults();
-  o.scheme = GM_FLUID_MIDPOINT;
+  o.scheme = scheme;
   o.nu = 0.0;
   o.dt = dt;
   gm_fluid *f = NULL;

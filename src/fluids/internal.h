@@ -48,7 +48,8 @@ struct gm_fluid {
   size_t sdim;            /* 2: plane, 3: surface in R³; grad has 3·sdim values per triangle */
   size_t n_mesh_vertices; /* the mesh's vertices (nv: the solver's, after periodic identification) */
   size_t *rep;            /* mesh vertex -> solver vertex (NULL: identity) */
-  size_t *tri_own;        /* triangles in solver vertices (f->tri points here when closed) */
+  size_t *tri_own;
+  size_t *edge_own;       /* quotient edges (f->edge points here when closed, seed scheme) */        /* triangles in solver vertices (f->tri points here when closed) */
   double *xq;             /* coordinates per solver vertex */
   double *normal;         /* unit normal per triangle (surfaces) */
   double *coriolis;       /* f = 2Ω z/|x| per solver vertex (closed domains) */

@@ -36,6 +36,12 @@ static void vorticity_of(const gm_fluid *f, const double *gamma, double *zeta) {
   for (size_t v = 0; v < f->nv; ++v) zeta[v] = gamma[v] / f->star0[v];
 }
 
+/* The convected vorticity is the absolute one, ζ + f, in a rotating frame (surfaces). */
+static void add_coriolis(const gm_fluid *f, double *zeta) {
+  if (f->closed && f->opt.rotation != 0.0)
+    for (size_t v = 0; v < f->nv; ++v) zeta[v] += f->coriolis[v];
+}
+
 /* Solve the SPD system ch on the free vertices with right-hand side rhs[v] (all vertices) plus
  * c (free vertices), and write ψ (Dirichlet values elsewhere). */
 static gm_status solve_psi(gm_fluid *f, gm_sparse_cholesky *ch, const double *rhs, const double *c,
@@ -53,7 +59,8 @@ static gm_status solve_psi(gm_fluid *f, gm_sparse_cholesky *ch, const double *rh
  * here it is lagged to θ^n so that the matrix (⋆0/dt + κL) is factorized once at create. */
 static gm_status scalar_step(gm_fluid *f, const double *psi_half) {
   if (!f->n_wfree) return GM_OK;
-  if (f->closed) { /* no edge quotient: the P1 Jacobian, −∫ φ_v u·∇θ (conserves Σ ⋆0 θ) */
+  if (f->closed && f->opt.scheme == GM_FLUID_MIDPOINT) {
+    /* the P1 Jacobian, −∫ φ_v u·∇θ (conserves Σ ⋆0 θ) */
     gm_fluid_jacobian(f, psi_half, f->theta, f->out);
     for (size_t v = 0; v < f->nv; ++v) f->out[v] = -f->out[v];
   } else
@@ -78,12 +85,14 @@ static gm_status scalar_step(gm_fluid *f, const double *psi_half) {
 static gm_status seed_step(gm_fluid *f) {
   const double dt = f->opt.dt;
   vorticity_of(f, f->gamma, f->zeta);
+  add_coriolis(f, f->zeta);
   gm_fluid_convective_outflow(f, f->zeta, f->psi, f->out);
   for (size_t v = 0; v < f->nv; ++v) f->rhs[v] = f->gamma[v] - 0.5 * dt * f->out[v];
   gm_status st = solve_psi(f, f->m_half, f->rhs, f->c_half, f->psi_h);
   if (st) return st;
   gm_fluid_circulation_of(f, f->psi_h, f->gamma_h);
   vorticity_of(f, f->gamma_h, f->zeta_h);
+  add_coriolis(f, f->zeta_h);
   gm_fluid_convective_outflow(f, f->zeta_h, f->psi_h, f->out);
   for (size_t v = 0; v < f->nv; ++v) f->rhs[v] = f->gamma[v] - dt * f->out[v];
   st = solve_psi(f, f->m_full, f->rhs, f->c_full, f->psi_k);
@@ -155,8 +164,7 @@ static gm_status midpoint_step(gm_fluid *f) {
     /* rotating frame: the Jacobian advects the absolute vorticity ζ + f (barotropic vorticity
      * equation); t(ψ, ψ, ζ+f) = 0 and t(1, ψ, ζ+f) = 0 keep energy and total vorticity, and
      * t(ζ+f, ψ, ζ+f) = 0 the potential enstrophy ½ Σ ⋆0 (ζ+f)². */
-    if (f->closed && f->opt.rotation != 0.0)
-      for (size_t v = 0; v < f->nv; ++v) f->zeta_h[v] += f->coriolis[v];
+    add_coriolis(f, f->zeta_h);
     /* Stress-free walls: ζ̃ = 0 where ψ is fixed. Still Σ ψ_v Γ̇_v = t(ψ, ψ, ζ̃) = 0 and
      * Σ Γ̇_v = 0 (ψ constant on the wall), and Σ ζ̃_v Γ̇_v = t(ζ̃, ψ, ζ̃) = 0 with Σ ζ̃_v Γ_v = twice
      * the interior enstrophy: the quadratic invariants kept by the midpoint rule. */
