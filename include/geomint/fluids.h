@@ -178,7 +178,8 @@ void gm_fluid_vorticity(const gm_fluid *f, double *zeta);
  * plane, of the linear interpolant of ψ, the Whitney (Raviart–Thomas) reconstruction whose
  * normal flux through each edge is dψ. */
 void gm_fluid_velocity(const gm_fluid *f, double *u);
-/* Flux through each primal edge, oriented by the complex: dψ (n_edges values). */
+/* Flux through each primal edge of the mesh, oriented by the complex: dψ (the complex's n_edges
+ * values; on a periodic mesh both copies of a seam edge carry the flux). */
 void gm_fluid_flux(const gm_fluid *f, double *flux);
 
 typedef struct gm_fluid_diagnostics {
@@ -198,8 +199,13 @@ void gm_fluid_diagnose(const gm_fluid *f, gm_fluid_diagnostics *d);
 
 typedef enum {
   GM_FLUID_INIT_REST = 0, /* ψ = boundary values, 0 inside; θ = Dirichlet values, 0 inside */
-  GM_FLUID_INIT_SHEAR_MODES = 1 /* ψ = A (sin πx̂ sin πŷ + ½ sin 2πx̂ sin πŷ) on the bounding box
+  GM_FLUID_INIT_SHEAR_MODES = 1, /* ψ = A (sin πx̂ sin πŷ + ½ sin 2πx̂ sin πŷ) on the bounding box
                                    (x̂, ŷ in [0,1]); θ = a Gaussian blob at (0.3, 0.6) */
+  /* periodic boxes (x̂, ŷ in [0, 1] on the bounding box; θ the same blob): */
+  GM_FLUID_INIT_TAYLOR_GREEN = 2, /* ψ = A sin 2πx̂ sin 2πŷ */
+  GM_FLUID_INIT_DOUBLE_SHEAR = 3, /* gm_fluid_double_shear's layer on [0, 2π]² scaled to the box */
+  /* the unit-sphere directions x/|x| of a surface (θ = the blob at latitude 30°, longitude 0): */
+  GM_FLUID_INIT_ROSSBY_HAURWITZ = 4 /* gm_fluid_rossby_haurwitz's wave (Ω-scaled units) */
 } gm_fluid_initial;
 
 /* A case file read into memory: mesh, groups, conditions, options, run length and outputs.
@@ -210,6 +216,7 @@ typedef struct gm_fluid_case {
   size_t n_bcs;
   gm_fluid_bc *bcs; /* group names point into bc_names */
   char (*bc_names)[GM_FLUID_NAME_SIZE];
+  char (*partner_names)[GM_FLUID_NAME_SIZE]; /* periodic partners (bcs[i].partner) */
   gm_fluid_options options;
   double rho; /* density (only scales the pressure; default 1) */
   double t_end;

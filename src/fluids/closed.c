@@ -37,7 +37,7 @@ static void uf_union(size_t *parent, size_t a, size_t b) {
 
 gm_status gm_fluid_periodic_map(const gm_mesh *mesh, const gm_fluid_groups *groups, size_t n_bcs,
                                 const gm_fluid_bc *bcs, size_t **rep_out, size_t *nq_out,
-                                char *msg, size_t msg_size) {
+                                double period[2], char *msg, size_t msg_size) {
   const size_t nv = mesh->n_vertices;
   const double *x = mesh->x;
   size_t *parent = malloc(nv * sizeof *parent), *rep = malloc(nv * sizeof *rep);
@@ -95,6 +95,7 @@ gm_status gm_fluid_periodic_map(const gm_mesh *mesh, const gm_fluid_groups *grou
       }
     }
     double off[2] = {lo_b[0] - lo_a[0], lo_b[1] - lo_a[1]};
+    for (int k = 0; k < 2; ++k) period[k] = fmax(period[k], fabs(off[k]));
     if (na != nb || na == 0) {
       st = GM_EINVAL;
       snprintf(msg, msg_size,

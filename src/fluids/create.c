@@ -339,7 +339,8 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
                  covered, gm_complex_boundary_count(f->cx, 1));
         goto done;
       }
-      if ((st = gm_fluid_periodic_map(mesh, groups, n_bcs, bcs, &rep, &nq, msg, sizeof msg)))
+      if ((st = gm_fluid_periodic_map(mesh, groups, n_bcs, bcs, &rep, &nq, f->period, msg,
+                                      sizeof msg)))
         goto done;
     }
     f->closed = 1;

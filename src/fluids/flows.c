@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "core/internal.h"
-#include "geomint/fluids.h"
+#include "fluids/internal.h"
 
 static double mean_edge(const gm_complex *cx) {
   const size_t ne = gm_complex_count(cx, 1), N = gm_complex_embedding_dim(cx);
@@ -147,13 +147,12 @@ static void track(const gm_fluid *f, const tracker *tr, gm_fluid_flow_result *r)
   if (d.midpoint_iterations > r->max_iterations) r->max_iterations = d.midpoint_iterations;
 }
 
-static gm_status set_psi(gm_fluid *f, double (*fn)(const double *x, const void *ctx),
-                         const void *ctx, gm_error *err) {
+static gm_status set_psi(gm_fluid *f, double (*fn)(const double *x), gm_error *err) {
   const size_t nv = gm_fluid_n_vertices(f), sd = gm_fluid_space_dim(f);
   const double *x = gm_fluid_coordinates(f);
   double *psi = malloc(nv * sizeof *psi);
   if (!psi) return gm_error_set(err, GM_ENOMEM, "out of memory");
-  for (size_t v = 0; v < nv; ++v) psi[v] = fn(x + sd * v, ctx);
+  for (size_t v = 0; v < nv; ++v) psi[v] = fn(x + sd * v);
   gm_status st = gm_fluid_set_state(f, psi, NULL);
   free(psi);
   if (st) return gm_error_set(err, st, "%s", gm_fluid_errmsg(f));
@@ -172,8 +171,7 @@ static gm_status run(gm_fluid *f, size_t steps, gm_fluid_flow_result *r, gm_erro
   return GM_OK;
 }
 
-static double taylor_green_psi(const double *x, const void *ctx) {
-  (void)ctx;
+static double taylor_green_psi(const double *x) {
   return sin(x[0]) * sin(x[1]);
 }
 
@@ -189,7 +187,7 @@ gm_status gm_fluid_taylor_green(gm_fluid_scheme scheme, size_t n, double nu, dou
   o.dt = dt;
   gm_fluid *f = NULL;
   gm_status st = periodic_square(n, &o, &f, err);
-  if (!st) st = set_psi(f, taylor_green_psi, NULL, err);
+  if (!st) st = set_psi(f, taylor_green_psi, err);
   gm_fluid_diagnostics d0, d1;
   if (!st) gm_fluid_diagnose(f, &d0);
   if (!st) st = run(f, steps, r, err);
@@ -211,8 +209,7 @@ static double log_cosh(double z) {
   return z + log1p(exp(-2.0 * z)) - log(2.0);
 }
 
-static double double_shear_psi(const double *x, const void *ctx) {
-  (void)ctx;
+double gm_fluid_double_shear_psi(const double *x) {
   const double delta = GM_PI / 15.0, eps = 0.05, y = x[1];
   double c = 2.0 * delta * log_cosh(GM_PI / (2.0 * delta));
   double p = y <= GM_PI ? delta * log_cosh((y - 0.5 * GM_PI) / delta)
@@ -231,7 +228,7 @@ gm_status gm_fluid_double_shear(gm_fluid_scheme scheme, size_t n, double dt, siz
   o.dt = dt;
   gm_fluid *f = NULL;
   gm_status st = periodic_square(n, &o, &f, err);
-  if (!st) st = set_psi(f, double_shear_psi, NULL, err);
+  if (!st) st = set_psi(f, gm_fluid_double_shear_psi, err);
   if (!st) st = run(f, steps, r, err);
   gm_fluid_free(f);
   return st;
@@ -244,8 +241,7 @@ gm_status gm_fluid_double_shear(gm_fluid_scheme scheme, size_t n, double dt, siz
 #define RH_OMEGA (7.848e-6 / 7.292e-5)
 #define RH_R 4.0
 
-static double rossby_haurwitz_psi(const double *x, const void *ctx) {
-  (void)ctx;
+double gm_fluid_rossby_haurwitz_psi(const double *x) {
   double re4 = x[0] * x[0] * x[0] * x[0] - 6.0 * x[0] * x[0] * x[1] * x[1] +
                x[1] * x[1] * x[1] * x[1];
   return RH_OMEGA * x[2] - RH_OMEGA * x[2] * re4;
@@ -287,7 +283,7 @@ gm_status gm_fluid_rossby_haurwitz(size_t subdivisions, double dt, double t_end,
   gm_fluid *f = NULL;
   st = gm_fluid_create(m, &g, 0, NULL, &o, &f, err);
   gm_mesh_free(m);
-  if (!st) st = set_psi(f, rossby_haurwitz_psi, NULL, err);
+  if (!st) st = set_psi(f, gm_fluid_rossby_haurwitz_psi, err);
   if (st) {
     gm_fluid_free(f);
     return st;

@@ -294,7 +294,16 @@ size_t gm_fluid_space_dim(const gm_fluid *f) { return f->sdim; }
 const double *gm_fluid_coordinates(const gm_fluid *f) { return f->closed ? f->xq : f->x; }
 
 void gm_fluid_flux(const gm_fluid *f, double *flux) {
-  gm_csr_matvec(gm_complex_d(f->cx, 0), 1.0, f->psi, 0.0, flux);
+  const gm_csr *d0 = gm_complex_d(f->cx, 0);
+  if (!f->rep) {
+    gm_csr_matvec(d0, 1.0, f->psi, 0.0, flux);
+    return;
+  }
+  for (size_t e = 0; e < d0->n_rows; ++e) { /* ψ pulled back to the mesh's vertices */
+    flux[e] = 0.0;
+    for (size_t k = d0->row_start[e]; k < d0->row_start[e + 1]; ++k)
+      flux[e] += d0->val[k] * f->psi[f->rep[d0->col[k]]];
+  }
 }
 
 void gm_fluid_diagnose(const gm_fluid *f, gm_fluid_diagnostics *d) {
