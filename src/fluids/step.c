@@ -252,7 +252,10 @@ gm_status gm_fluid_set_state(gm_fluid *f, const double *psi, const double *theta
       return GM_EINVAL;
     }
     f->dt_bound = bound;
-    for (size_t v = 0; v < f->nv; ++v) f->psi[v] = f->psi_fixed[v] ? f->psi_bc[v] : psi[v];
+    if (f->closed) /* no boundary: only the gauge vertex is fixed, so shift ψ to ψ = 0 there */
+      for (size_t v = 0; v < f->nv; ++v) f->psi[v] = psi[v] - psi[0];
+    else
+      for (size_t v = 0; v < f->nv; ++v) f->psi[v] = f->psi_fixed[v] ? f->psi_bc[v] : psi[v];
     gm_fluid_circulation_of(f, f->psi, f->gamma);
   }
   if (theta)
