@@ -73,4 +73,14 @@ static inline double fl_tri_area(const double *x, const size_t *t) {
   return 0.5 * fabs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
 }
 
+/* least-squares slope of log e against log h (a convergence rate) */
+static inline double fl_slope(size_t n, const double *h, const double *e) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (size_t i = 0; i < n; ++i) {
+    double x = log(h[i]), y = log(e[i]);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  return ((double)n * sxy - sx * sy) / ((double)n * sxx - sx * sx);
+}
+
 #endif

@@ -55,7 +55,12 @@ typedef enum {
   GM_FLUID_WALL = 0,   /* no normal flow; tangential velocity = `velocity` (0: no-slip) */
   GM_FLUID_INFLOW = 1, /* prescribed velocity: the parabola of centreline speed `speed` across
                           the group (a straight run of edges), or `profile` when set */
-  GM_FLUID_OUTFLOW = 2 /* ψ free, zero tangential velocity, zero diffusive flux of vorticity */
+  GM_FLUID_OUTFLOW = 2, /* ψ free, zero tangential velocity, zero diffusive flux of vorticity */
+  /* Identified with the group named `partner` by the translation that maps the group's bounding
+   * box onto the partner's: vertices and edges of the pair become one (the DEC operators live on
+   * the quotient complex). Every boundary group must then be periodic (a fully periodic domain;
+   * periodic channels with walls are not implemented), and the scheme GM_FLUID_MIDPOINT. */
+  GM_FLUID_PERIODIC = 3
 } gm_fluid_bc_kind;
 
 typedef enum {
@@ -75,6 +80,7 @@ typedef struct gm_fluid_bc {
   void *profile_ctx;
   gm_fluid_scalar_bc scalar;
   double scalar_value;
+  const char *partner; /* PERIODIC: the group identified with this one (copied) */
 } gm_fluid_bc;
 
 /* ---- the solver ---------------------------------------------------------------------------- */
@@ -83,9 +89,11 @@ typedef enum {
   /* Seed 004 eqs. 153–156 [R]: an explicit half step of the convection, a semi-implicit step of
    * the vorticity/stream function, an implicit diffusion step of the scalar. */
   GM_FLUID_SEED = 0,
-  /* ν = 0, closed box of walls at rest (slip): implicit midpoint on the vorticity with the P1
-   * Jacobian (antisymmetric trilinear form): kinetic energy, enstrophy and total vorticity are
-   * conserved to the tolerance of the fixed-point iteration. */
+  /* Implicit midpoint on the vorticity with the P1 Jacobian (antisymmetric trilinear form).
+   * ν = 0 in a closed box of walls at rest (slip), or ν >= 0 on a domain without boundary (fully
+   * periodic planar mesh, closed surface in R³; the viscous term implicit in the midpoint rule).
+   * At ν = 0 kinetic energy, enstrophy (of the absolute vorticity with rotation) and total
+   * vorticity are conserved to the tolerance of the fixed-point iteration. */
   GM_FLUID_MIDPOINT = 1
 } gm_fluid_scheme;
 
@@ -103,14 +111,19 @@ typedef struct gm_fluid_options {
    * dual cells. Energy and total vorticity stay exact; the conserved enstrophy is then the
    * interior one (gm_fluid_diagnostics.interior_enstrophy). Default 0. docs/fluids.md. */
   int stress_free_walls;
+  /* Closed surfaces in R³: angular speed Ω of the frame about the z axis; the Jacobian advects
+   * the absolute vorticity ζ + f with f = 2Ω z/|x| (2Ω sin(latitude) on a sphere about the
+   * origin): the non-divergent barotropic vorticity equation. Default 0. */
+  double rotation;
 } gm_fluid_options;
 
 gm_fluid_options gm_fluid_defaults(void);
 
 typedef struct gm_fluid gm_fluid;
 
-/* Build the solver on a flat triangle mesh (dim 2, coordinates in the plane), its boundary
- * groups and one condition per group (bcs[i].group names a group; every boundary edge must be in
+/* Build the solver on a flat triangle mesh (dim 2, coordinates in the plane) or a closed
+ * triangle surface in R³ (dim 2, N = 3; GM_FLUID_MIDPOINT only), its boundary
+ * groups (an empty set for closed surfaces) and one condition per group (bcs[i].group names a group; every boundary edge must be in
  * a group that has a condition). Copies what it needs. The initial state is ψ = the boundary
  * values on the walls and inflows and 0 elsewhere, θ = the Dirichlet values on the boundary and
  * 0 elsewhere (gm_fluid_set_state changes it).
@@ -119,7 +132,11 @@ typedef struct gm_fluid gm_fluid;
  * condition; a mesh that is not well-centred enough for the diagonal star (counts of edges with
  * ⋆1 <= 0, vertices with ⋆0 <= 0, triangles not well-centred); dt above the Courant bound of the
  * explicit half step (the bound is in the message and in gm_fluid_dt_bound); more than one
- * boundary loop or outflow run per loop (GM_EUNSUPPORTED); a net inflow with no outflow. */
+ * boundary loop or outflow run per loop (GM_EUNSUPPORTED); a net inflow with no outflow; a
+ * surface mesh that is not a closed manifold (edges not shared by exactly two triangles,
+ * vertices whose triangles do not form one fan: counts and the first culprit); a periodic group
+ * whose vertices have no partner vertex (named, with the offset). On domains without boundary
+ * ψ is fixed to 0 at one vertex (its gauge). */
 gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, size_t n_bcs,
                           const gm_fluid_bc *bcs, const gm_fluid_options *options, gm_fluid **out,
                           gm_error *err);
@@ -134,7 +151,16 @@ gm_status gm_fluid_set_state(gm_fluid *f, const double *psi, const double *theta
  * GM_ENOCONV when the midpoint iteration does not converge. */
 gm_status gm_fluid_advance(gm_fluid *f, size_t n_steps);
 
+/* Solver vertices: the mesh's, or on a periodic mesh the classes of identified vertices. The
+ * per-vertex arrays below have this length. */
 size_t gm_fluid_n_vertices(const gm_fluid *f);
+/* Mesh vertex -> solver vertex (n_mesh_vertices entries), NULL when they are the same. */
+const size_t *gm_fluid_vertex_map(const gm_fluid *f);
+/* Coordinates of each solver vertex (gm_fluid_space_dim values each; a periodic class takes its
+ * lowest-numbered mesh vertex's). */
+const double *gm_fluid_coordinates(const gm_fluid *f);
+/* 2 for flat meshes, 3 for surfaces in R³. */
+size_t gm_fluid_space_dim(const gm_fluid *f);
 size_t gm_fluid_n_triangles(const gm_fluid *f);
 const gm_complex *gm_fluid_complex(const gm_fluid *f);
 const gm_geometry *gm_fluid_geometry(const gm_fluid *f);
@@ -148,10 +174,12 @@ const double *gm_fluid_theta(const gm_fluid *f);       /* per vertex */
 const double *gm_fluid_circulation(const gm_fluid *f); /* Γ per vertex (dual cell) */
 /* ζ = Γ/|⋆v| per vertex (n_vertices values written). */
 void gm_fluid_vorticity(const gm_fluid *f, double *zeta);
-/* Velocity per triangle (2 values each): u = (∂ψ/∂y, −∂ψ/∂x) of the linear interpolant of ψ,
- * the Whitney (Raviart–Thomas) reconstruction whose normal flux through each edge is dψ. */
+/* Velocity per triangle (gm_fluid_space_dim values each): u = ∇ψ × n = (∂ψ/∂y, −∂ψ/∂x) in the
+ * plane, of the linear interpolant of ψ, the Whitney (Raviart–Thomas) reconstruction whose
+ * normal flux through each edge is dψ. */
 void gm_fluid_velocity(const gm_fluid *f, double *u);
-/* Flux through each primal edge, oriented by the complex: dψ (n_edges values). */
+/* Flux through each primal edge of the mesh, oriented by the complex: dψ (the complex's n_edges
+ * values; on a periodic mesh both copies of a seam edge carry the flux). */
 void gm_fluid_flux(const gm_fluid *f, double *flux);
 
 typedef struct gm_fluid_diagnostics {
@@ -171,8 +199,13 @@ void gm_fluid_diagnose(const gm_fluid *f, gm_fluid_diagnostics *d);
 
 typedef enum {
   GM_FLUID_INIT_REST = 0, /* ψ = boundary values, 0 inside; θ = Dirichlet values, 0 inside */
-  GM_FLUID_INIT_SHEAR_MODES = 1 /* ψ = A (sin πx̂ sin πŷ + ½ sin 2πx̂ sin πŷ) on the bounding box
+  GM_FLUID_INIT_SHEAR_MODES = 1, /* ψ = A (sin πx̂ sin πŷ + ½ sin 2πx̂ sin πŷ) on the bounding box
                                    (x̂, ŷ in [0,1]); θ = a Gaussian blob at (0.3, 0.6) */
+  /* periodic boxes (x̂, ŷ in [0, 1] on the bounding box; θ the same blob): */
+  GM_FLUID_INIT_TAYLOR_GREEN = 2, /* ψ = A sin 2πx̂ sin 2πŷ */
+  GM_FLUID_INIT_DOUBLE_SHEAR = 3, /* gm_fluid_double_shear's layer on [0, 2π]² scaled to the box */
+  /* the unit-sphere directions x/|x| of a surface (θ = the blob at latitude 30°, longitude 0): */
+  GM_FLUID_INIT_ROSSBY_HAURWITZ = 4 /* gm_fluid_rossby_haurwitz's wave (Ω-scaled units) */
 } gm_fluid_initial;
 
 /* A case file read into memory: mesh, groups, conditions, options, run length and outputs.
@@ -183,6 +216,7 @@ typedef struct gm_fluid_case {
   size_t n_bcs;
   gm_fluid_bc *bcs; /* group names point into bc_names */
   char (*bc_names)[GM_FLUID_NAME_SIZE];
+  char (*partner_names)[GM_FLUID_NAME_SIZE]; /* periodic partners (bcs[i].partner) */
   gm_fluid_options options;
   double rho; /* density (only scales the pressure; default 1) */
   double t_end;
@@ -245,6 +279,42 @@ typedef struct gm_fluid_shear_result {
  * on the edges (|e||⋆e|-weighted). */
 gm_status gm_fluid_shear(int poiseuille, size_t n, double dt, double t_end,
                          gm_fluid_shear_result *r, gm_error *err);
+
+/* ---- flows on domains without boundary (docs/fluids.md) -------------------------------------- */
+
+typedef struct gm_fluid_flow_result {
+  size_t n_triangles, n_vertices, steps, max_iterations;
+  double mean_edge;
+  double measured, exact; /* Taylor–Green: amplitude decay rate and 2ν; Rossby–Haurwitz: angular
+                             speed of the pattern and Haurwitz's; double shear layer: 0 */
+  /* max over the steps of |X − X0| / |X0| (total vorticity: |ΣΓ − ΣΓ0| / Σ|Γ0|) */
+  double energy_drift, enstrophy_drift, vorticity_drift;
+  double energy_change; /* (E(T) − E0)/E0 */
+  double div_max;
+} gm_fluid_flow_result;
+
+/* The square [0, L]² as a triangular lattice for periodic pairs: n cells along x, an even number
+ * of rows ≈ 2n/√3 (near-equilateral triangles), every other row shifted by half a cell, so the
+ * sides "left" and "right" are zigzags that match by translation, as do "bottom" and "top";
+ * identified, every vertex has six triangles (no right triangles at the seams). */
+gm_status gm_fluid_periodic_square_mesh(double L, size_t n, gm_mesh **mesh,
+                                        gm_fluid_groups **groups, gm_error *err);
+/* Taylor–Green vortex ψ = sin x sin y on the periodic square [0, 2π]²
+ * (gm_fluid_periodic_square_mesh, n cells along x), with viscosity nu (scheme GM_FLUID_MIDPOINT or GM_FLUID_SEED): `measured` = −ln(E(T)/E0)/(2T), against exact
+ * 2ν (the amplitude decays as exp(−2νt)). */
+gm_status gm_fluid_taylor_green(gm_fluid_scheme scheme, size_t n, double nu, double dt, size_t steps,
+                                gm_fluid_flow_result *r, gm_error *err);
+/* Inviscid double shear layer on [0, 2π]² (Bell, Colella & Glaz, J. Comput. Phys. 85 (1989)
+ * 257–283: u = tanh((y − π/2)/δ) below y = π, tanh((3π/2 − y)/δ) above, v = ε sin x, δ = π/15,
+ * ε = 0.05), ν = 0 (either scheme; the seed scheme does not conserve energy). */
+gm_status gm_fluid_double_shear(gm_fluid_scheme scheme, size_t n, double dt, size_t steps, gm_fluid_flow_result *r,
+                                gm_error *err);
+/* Rossby–Haurwitz wave of wavenumber 4 on the unit sphere rotating at Ω = 1 (icosphere of the
+ * given subdivisions), ω = K = 7.848e-6/7.292e-5 (Williamson et al. 1992, test 6, in units of
+ * 1/Ω), midpoint scheme, ν = 0, to t_end: `measured` = angular speed of the pattern (phase of
+ * its zonal wavenumber-4 part), `exact` = (R(3+R)ω − 2Ω)/((1+R)(2+R)) (Haurwitz 1940). */
+gm_status gm_fluid_rossby_haurwitz(size_t subdivisions, double dt, double t_end,
+                                   gm_fluid_flow_result *r, gm_error *err);
 
 #ifdef __cplusplus
 }

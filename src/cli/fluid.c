@@ -27,7 +27,17 @@ static const char usage[] =
     "edge 2.99e-2, the seed's mesh size); prints the profile error against Poiseuille.\n"
     "rates: seed 004 B15, Couette or Poiseuille on the unit square at the meshes N (default\n"
     "12,20,48,72,96,120,144, mean edges close to the seed's seven), errors and rates of psi,\n"
-    "theta, velocity and flux (dt = min(1e-2, 0.5/N), t = 1).\n";
+    "theta, velocity and flux (dt = min(1e-2, 0.5/N), t = 1).\n\n"
+    "       geomint fluid taylor-green [--scheme midpoint|seed] [--cells 8,16,32] [--json]\n"
+    "       geomint fluid shear-layer [--scheme midpoint|seed] [--cells N] [--steps S] [--json]\n"
+    "       geomint fluid rossby-haurwitz [--subdivisions 2,3,4] [--time T] [--json]\n"
+    "taylor-green: psi = sin x sin y on the periodic square [0, 2 pi]^2, nu = 0.05, dt = 0.05,\n"
+    "t = 1: the decay rate of the amplitude against 2 nu and its convergence rate.\n"
+    "shear-layer: the inviscid double shear layer (Bell, Colella & Glaz 1989) on N cells\n"
+    "(default 12), S steps of 0.05 (default 10000): drifts of energy, enstrophy, total vorticity.\n"
+    "rossby-haurwitz: the wavenumber-4 wave on the unit sphere rotating at Omega = 1 (icosphere\n"
+    "subdivisions; dt = 0.4 / 2^(s-2)) to T (default 10): the pattern's angular speed against\n"
+    "Haurwitz's (R(3+R) omega - 2 Omega)/((1+R)(2+R)) and the convergence rate.\n";
 
 static double now(void) {
   struct timespec ts;
@@ -249,6 +259,157 @@ static int fluid_rates(int argc, char **argv) {
   return CLI_EXIT_OK;
 }
 
+static int parse_counts(const char *cmd, const char *list, size_t lo, size_t hi, size_t *out,
+                        size_t *n) {
+  *n = 0;
+  for (const char *p = list; *p && *n < 16;) {
+    char *end = NULL;
+    long v = strtol(p, &end, 10);
+    if (end == p || v < (long)lo || v > (long)hi || (*end && *end != ',')) {
+      cli_error(cmd, "expected integers in [%zu, %zu] separated by commas, got '%s'", lo, hi,
+                list);
+      return CLI_EXIT_USAGE;
+    }
+    out[(*n)++] = (size_t)v;
+    p = *end ? end + 1 : end;
+  }
+  return CLI_EXIT_OK;
+}
+
+static int parse_scheme(const char *cmd, const char *name, gm_fluid_scheme *s) {
+  if (strcmp(name, "midpoint") == 0)
+    *s = GM_FLUID_MIDPOINT;
+  else if (strcmp(name, "seed") == 0)
+    *s = GM_FLUID_SEED;
+  else {
+    cli_error(cmd, "--scheme must be midpoint or seed, not '%s'", name);
+    return CLI_EXIT_USAGE;
+  }
+  return CLI_EXIT_OK;
+}
+
+/* taylor-green and rossby-haurwitz: a measured rate against its closed form on a list of
+ * meshes, with the convergence rate of the relative error */
+static int fluid_rate_table(const char *cmd, int argc, char **argv) {
+  int rh = strcmp(cmd, "fluid rossby-haurwitz") == 0, json = 0;
+  const char *list = rh ? "2,3,4" : "8,16,32", *scheme_name = "midpoint";
+  double t_end = 10.0;
+  cli_option options[] = {{rh ? "--subdivisions" : "--cells", CLI_ARG_STRING, &list, 0},
+                          {"--json", CLI_ARG_FLAG, &json, 0},
+                          {rh ? "--time" : "--scheme", rh ? CLI_ARG_DOUBLE : CLI_ARG_STRING,
+                           rh ? (void *)&t_end : (void *)&scheme_name, 0}};
+  size_t n_pos = 0;
+  int rc = cli_parse(cmd, argc, argv, options, 3, NULL, 0, &n_pos);
+  if (rc == CLI_HELP) {
+    fputs(usage, stdout);
+    return CLI_EXIT_OK;
+  }
+  if (rc != CLI_EXIT_OK) return rc;
+  gm_fluid_scheme scheme = GM_FLUID_MIDPOINT;
+  size_t m[16], n = 0;
+  if ((rc = parse_scheme(cmd, scheme_name, &scheme)) ||
+      (rc = parse_counts(cmd, list, rh ? 1 : 4, rh ? 7 : 2000, m, &n)))
+    return rc;
+  if (!(t_end > 0 && t_end <= 1e4)) {
+    cli_error(cmd, "--time must be in (0, 1e4]");
+    return CLI_EXIT_USAGE;
+  }
+  double h[16], e[16];
+  gm_fluid_flow_result r[16];
+  gm_error err = {{0}};
+  for (size_t i = 0; i < n; ++i) {
+    gm_status st = rh ? gm_fluid_rossby_haurwitz(m[i], 0.4 / pow(2.0, (double)m[i] - 2.0), t_end,
+                                                 &r[i], &err)
+                      : gm_fluid_taylor_green(scheme, m[i], 0.05, 0.05, 20, &r[i], &err);
+    if (st) {
+      cli_error(cmd, "%s", err.message);
+      return st == GM_EINVAL ? CLI_EXIT_USAGE : CLI_EXIT_FAILURE;
+    }
+    h[i] = r[i].mean_edge;
+    e[i] = fabs(r[i].measured / r[i].exact - 1.0);
+  }
+  double rate = n > 1 ? fit_slope(n, h, e) : NAN;
+  if (json) {
+    cJSON *root = cJSON_CreateObject();
+    double tri[16], meas[16], drift[16];
+    for (size_t i = 0; i < n; ++i) {
+      tri[i] = (double)r[i].n_triangles;
+      meas[i] = r[i].measured;
+      drift[i] = r[i].energy_drift;
+    }
+    cJSON_AddItemToObject(root, "triangles", cli_json_numbers(tri, n));
+    cJSON_AddItemToObject(root, "mean_edge", cli_json_numbers(h, n));
+    cJSON_AddItemToObject(root, "measured", cli_json_numbers(meas, n));
+    cJSON_AddItemToObject(root, "exact", cli_json_number(r[0].exact));
+    cJSON_AddItemToObject(root, "relative_error", cli_json_numbers(e, n));
+    cJSON_AddItemToObject(root, "energy_drift", cli_json_numbers(drift, n));
+    if (n > 1) cJSON_AddItemToObject(root, "rate", cli_json_number(rate));
+    return cli_json_print(root);
+  }
+  if (rh)
+    printf("Rossby-Haurwitz wave R = 4 on the unit sphere, Omega = 1, omega = K = %.6f, t = %g\n"
+           "pattern speed (Haurwitz 1940) %.6e\n",
+           7.848e-6 / 7.292e-5, t_end, r[0].exact);
+  else
+    printf("Taylor-Green on the periodic square, %s scheme, nu = 0.05, dt = 0.05, t = 1\n"
+           "decay rate of the amplitude, exact 2 nu = %.6e\n",
+           scheme == GM_FLUID_SEED ? "seed" : "midpoint", r[0].exact);
+  printf("%6s %9s %11s %13s %11s %11s %11s\n", rh ? "subdiv" : "cells", "triangles", "mean edge",
+         rh ? "speed" : "decay rate", "rel. error", "energy", "max|div|");
+  for (size_t i = 0; i < n; ++i)
+    printf("%6zu %9zu %11.4e %13.6e %11.3e %11.2e %11.1e\n", m[i], r[i].n_triangles, h[i],
+           r[i].measured, e[i], rh ? r[i].energy_drift : r[i].energy_change, r[i].div_max);
+  if (n > 1) printf("convergence rate %.2f\n", rate);
+  printf("(energy: %s)\n", rh ? "max relative drift" : "relative change over the run");
+  return CLI_EXIT_OK;
+}
+
+static int fluid_shear_layer(int argc, char **argv) {
+  const char *scheme_name = "midpoint";
+  size_t cells = 12, steps = 10000;
+  int json = 0;
+  cli_option options[] = {{"--scheme", CLI_ARG_STRING, &scheme_name, 0},
+                          {"--cells", CLI_ARG_COUNT, &cells, 0},
+                          {"--steps", CLI_ARG_COUNT, &steps, 0},
+                          {"--json", CLI_ARG_FLAG, &json, 0}};
+  size_t n_pos = 0;
+  int rc = cli_parse("fluid shear-layer", argc, argv, options, 4, NULL, 0, &n_pos);
+  if (rc == CLI_HELP) {
+    fputs(usage, stdout);
+    return CLI_EXIT_OK;
+  }
+  if (rc != CLI_EXIT_OK) return rc;
+  gm_fluid_scheme scheme = GM_FLUID_MIDPOINT;
+  if ((rc = parse_scheme("fluid shear-layer", scheme_name, &scheme))) return rc;
+  gm_fluid_flow_result r;
+  gm_error err = {{0}};
+  double t0 = now();
+  gm_status st = gm_fluid_double_shear(scheme, cells, 0.05, steps, &r, &err);
+  double wall = now() - t0;
+  if (st) {
+    cli_error("fluid shear-layer", "%s", err.message);
+    return st == GM_EINVAL ? CLI_EXIT_USAGE : CLI_EXIT_FAILURE;
+  }
+  if (json) {
+    cJSON *root = cJSON_CreateObject();
+    cJSON_AddItemToObject(root, "triangles", cli_json_number((double)r.n_triangles));
+    cJSON_AddItemToObject(root, "steps", cli_json_number((double)r.steps));
+    cJSON_AddItemToObject(root, "energy_drift", cli_json_number(r.energy_drift));
+    cJSON_AddItemToObject(root, "energy_change", cli_json_number(r.energy_change));
+    cJSON_AddItemToObject(root, "enstrophy_drift", cli_json_number(r.enstrophy_drift));
+    cJSON_AddItemToObject(root, "vorticity_drift", cli_json_number(r.vorticity_drift));
+    cJSON_AddItemToObject(root, "div_max", cli_json_number(r.div_max));
+    cJSON_AddItemToObject(root, "wall_s", cli_json_number(wall));
+    return cli_json_print(root);
+  }
+  printf("double shear layer, %s scheme, %zu triangles, %zu steps of 0.05 in %.2f s\n",
+         scheme == GM_FLUID_SEED ? "seed" : "midpoint", r.n_triangles, r.steps, wall);
+  printf("max relative drift: energy %.3e, enstrophy %.3e; total vorticity %.3e (of sum|Gamma|)\n",
+         r.energy_drift, r.enstrophy_drift, r.vorticity_drift);
+  printf("energy change at the end %.3e, max |delta omega| %.1e\n", r.energy_change, r.div_max);
+  return CLI_EXIT_OK;
+}
+
 static int fluid_main(int argc, char **argv) {
   if (argc < 1 || strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0) {
     fputs(usage, argc < 1 ? stderr : stdout);
@@ -257,7 +418,15 @@ static int fluid_main(int argc, char **argv) {
   if (strcmp(argv[0], "run") == 0) return fluid_run(argc - 1, argv + 1);
   if (strcmp(argv[0], "channel") == 0) return fluid_channel(argc - 1, argv + 1);
   if (strcmp(argv[0], "rates") == 0) return fluid_rates(argc - 1, argv + 1);
-  cli_error("fluid", "unknown subcommand '%s' (expected run, channel or rates)", argv[0]);
+  if (strcmp(argv[0], "taylor-green") == 0)
+    return fluid_rate_table("fluid taylor-green", argc - 1, argv + 1);
+  if (strcmp(argv[0], "rossby-haurwitz") == 0)
+    return fluid_rate_table("fluid rossby-haurwitz", argc - 1, argv + 1);
+  if (strcmp(argv[0], "shear-layer") == 0) return fluid_shear_layer(argc - 1, argv + 1);
+  cli_error("fluid",
+            "unknown subcommand '%s' (expected run, channel, rates, taylor-green, shear-layer or "
+            "rossby-haurwitz)",
+            argv[0]);
   return CLI_EXIT_USAGE;
 }
 

@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "core/internal.h"
-#include "geomint/fluids.h"
+#include "fluids/internal.h"
 
 void gm_fluid_case_free(gm_fluid_case *c) {
   if (!c) return;
@@ -17,6 +17,7 @@ void gm_fluid_case_free(gm_fluid_case *c) {
   gm_fluid_groups_free(c->groups);
   free(c->bcs);
   free(c->bc_names);
+  free(c->partner_names);
   free(c);
 }
 
@@ -68,7 +69,7 @@ static gm_status get_pair(parser *p, const cJSON *obj, const char *key, const ch
 static const char *known_keys[] = {
     "mesh",    "boundaries", "nu",           "kappa",          "rho",     "dt", "t_end", "scheme",
     "initial", "amplitude",  "output_every", "velocity_scale", "comment", "stress_free_walls",
-    NULL};
+    "rotation", NULL};
 
 static gm_status parse_mesh(parser *p, const cJSON *m, const char *base_dir, gm_fluid_case *c,
                             gm_error *err) {
@@ -85,9 +86,45 @@ static gm_status parse_mesh(parser *p, const cJSON *m, const char *base_dir, gm_
     st = gm_fluid_groups_read_msh(path, c->mesh, &c->groups, err);
     return st;
   }
+  const cJSON *ps = cJSON_GetObjectItemCaseSensitive(m, "periodic_square");
+  const cJSON *ico = cJSON_GetObjectItemCaseSensitive(m, "icosphere");
+  const cJSON *tor = cJSON_GetObjectItemCaseSensitive(m, "torus");
+  if (cJSON_IsObject(ps)) { /* gm_fluid_periodic_square_mesh */
+    double L = 2.0 * GM_PI, n = 32;
+    if ((st = get_number(p, ps, "length", "$.mesh.periodic_square.length", &L)) ||
+        (st = get_number(p, ps, "cells", "$.mesh.periodic_square.cells", &n)))
+      return st;
+    if (!(L > 0) || !(n >= 3 && n <= 1e4 && n == floor(n)))
+      return bad(p, "$.mesh.periodic_square", "length > 0 and cells an integer in [3, 10000]");
+    return gm_fluid_periodic_square_mesh(L, (size_t)n, &c->mesh, &c->groups, err);
+  }
+  if (cJSON_IsObject(ico) || cJSON_IsObject(tor)) { /* closed surfaces: no boundary groups */
+    c->groups = calloc(1, sizeof *c->groups);
+    if (!c->groups) return GM_ENOMEM;
+    if (cJSON_IsObject(ico)) {
+      double r = 1, s = 4;
+      if ((st = get_number(p, ico, "radius", "$.mesh.icosphere.radius", &r)) ||
+          (st = get_number(p, ico, "subdivisions", "$.mesh.icosphere.subdivisions", &s)))
+        return st;
+      if (!(r > 0) || !(s >= 0 && s <= 8 && s == floor(s)))
+        return bad(p, "$.mesh.icosphere", "radius > 0 and subdivisions an integer in [0, 8]");
+      return gm_mesh_icosphere(r, (size_t)s, &c->mesh, err);
+    }
+    double R = 2, r = 0.8, n[2] = {40, 16};
+    if ((st = get_number(p, tor, "R", "$.mesh.torus.R", &R)) ||
+        (st = get_number(p, tor, "r", "$.mesh.torus.r", &r)) ||
+        (st = get_pair(p, tor, "cells", "$.mesh.torus.cells", n)))
+      return st;
+    if (!(R > r && r > 0) || !(n[0] >= 4 && n[0] <= 1e4 && n[1] >= 3 && n[1] <= 1e4) ||
+        n[0] != floor(n[0]) || n[1] != floor(n[1]))
+      return bad(p, "$.mesh.torus", "R > r > 0 and cells two integers (major even >= 4)");
+    return gm_mesh_torus(R, r, (size_t)n[0], (size_t)n[1], &c->mesh, err);
+  }
   const cJSON *r = cJSON_GetObjectItemCaseSensitive(m, "rectangle");
   if (!cJSON_IsObject(m) || !r || !cJSON_IsObject(r))
-    return bad(p, "$.mesh", "expected a mesh file name or {\"rectangle\": {...}}");
+    return bad(p, "$.mesh",
+               "expected a mesh file name or {\"rectangle\" | \"periodic_square\" | "
+               "\"icosphere\" | \"torus\": {...}}");
   double x[2] = {0, 1}, y[2] = {0, 1}, n[2] = {16, 0};
   if ((st = get_pair(p, r, "x", "$.mesh.rectangle.x", x)) ||
       (st = get_pair(p, r, "y", "$.mesh.rectangle.y", y)) ||
@@ -110,7 +147,8 @@ static gm_status parse_boundaries(parser *p, const cJSON *b, gm_fluid_case *c) {
   size_t n = (size_t)cJSON_GetArraySize(b);
   c->bcs = calloc(n ? n : 1, sizeof *c->bcs);
   c->bc_names = calloc(n ? n : 1, sizeof *c->bc_names);
-  if (!c->bcs || !c->bc_names) return GM_ENOMEM;
+  c->partner_names = calloc(n ? n : 1, sizeof *c->partner_names);
+  if (!c->bcs || !c->bc_names || !c->partner_names) return GM_ENOMEM;
   const cJSON *g;
   size_t i = 0;
   cJSON_ArrayForEach(g, b) {
@@ -129,10 +167,19 @@ static gm_status parse_boundaries(parser *p, const cJSON *b, gm_fluid_case *c) {
       bc->kind = GM_FLUID_INFLOW;
     else if (strcmp(t, "outflow") == 0)
       bc->kind = GM_FLUID_OUTFLOW;
-    else {
+    else if (strcmp(t, "periodic") == 0) {
+      bc->kind = GM_FLUID_PERIODIC;
+      const cJSON *pn = cJSON_GetObjectItemCaseSensitive(g, "partner");
+      char jt[160];
+      snprintf(jt, sizeof jt, "%s.partner", jp);
+      if (!cJSON_IsString(pn) || strlen(pn->valuestring) >= GM_FLUID_NAME_SIZE)
+        return bad(p, jt, "expected the name of the group identified with this one");
+      memcpy(c->partner_names[i], pn->valuestring, strlen(pn->valuestring) + 1);
+      bc->partner = c->partner_names[i];
+    } else {
       char jt[160];
       snprintf(jt, sizeof jt, "%s.type", jp);
-      return bad(p, jt, "expected \"wall\", \"inflow\" or \"outflow\"");
+      return bad(p, jt, "expected \"wall\", \"inflow\", \"outflow\" or \"periodic\"");
     }
     char jk[160];
     gm_status st;
@@ -204,11 +251,11 @@ static gm_status case_parse(const char *text, const char *base_dir, const char *
     goto done;
   }
   const cJSON *b = cJSON_GetObjectItemCaseSensitive(root, "boundaries");
-  if (!b) {
+  if (!b && c->mesh->N == 2) {
     st = bad(&p, "$.boundaries", "missing");
     goto done;
   }
-  if ((st = parse_boundaries(&p, b, c))) goto done;
+  if (b && (st = parse_boundaries(&p, b, c))) goto done;
   double every = 0;
   if ((st = get_number(&p, root, "nu", "$.nu", &c->options.nu)) ||
       (st = get_number(&p, root, "kappa", "$.kappa", &c->options.kappa)) ||
@@ -218,6 +265,7 @@ static gm_status case_parse(const char *text, const char *base_dir, const char *
       (st = get_number(&p, root, "velocity_scale", "$.velocity_scale",
                        &c->options.velocity_scale)) ||
       (st = get_number(&p, root, "amplitude", "$.amplitude", &c->initial_amplitude)) ||
+      (st = get_number(&p, root, "rotation", "$.rotation", &c->options.rotation)) ||
       (st = get_number(&p, root, "output_every", "$.output_every", &every)))
     goto done;
   if (c->options.nu < 0) {
@@ -270,8 +318,22 @@ static gm_status case_parse(const char *text, const char *base_dir, const char *
       c->initial = GM_FLUID_INIT_REST;
     else if (cJSON_IsString(in) && strcmp(in->valuestring, "shear_modes") == 0)
       c->initial = GM_FLUID_INIT_SHEAR_MODES;
+    else if (cJSON_IsString(in) && strcmp(in->valuestring, "taylor_green") == 0)
+      c->initial = GM_FLUID_INIT_TAYLOR_GREEN;
+    else if (cJSON_IsString(in) && strcmp(in->valuestring, "double_shear_layer") == 0)
+      c->initial = GM_FLUID_INIT_DOUBLE_SHEAR;
+    else if (cJSON_IsString(in) && strcmp(in->valuestring, "rossby_haurwitz") == 0)
+      c->initial = GM_FLUID_INIT_ROSSBY_HAURWITZ;
     else {
-      st = bad(&p, "$.initial", "expected \"rest\" or \"shear_modes\"");
+      st = bad(&p, "$.initial",
+               "expected \"rest\", \"shear_modes\", \"taylor_green\", \"double_shear_layer\" "
+               "or \"rossby_haurwitz\"");
+      goto done;
+    }
+    int surface = c->mesh->N == 3, needs_surface = c->initial == GM_FLUID_INIT_ROSSBY_HAURWITZ;
+    if (c->initial != GM_FLUID_INIT_REST && surface != needs_surface) {
+      st = bad(&p, "$.initial", "\"%s\" is for %s", in->valuestring,
+               needs_surface ? "surfaces in R^3" : "flat meshes");
       goto done;
     }
   }
@@ -327,14 +389,17 @@ gm_status gm_fluid_case_solver(const gm_fluid_case *c, gm_fluid **out, gm_error 
   gm_status st = gm_fluid_create(c->mesh, c->groups, c->n_bcs, c->bcs, &c->options, out, err);
   if (st || c->initial == GM_FLUID_INIT_REST) return st;
   gm_fluid *f = *out;
-  const size_t nv = gm_fluid_n_vertices(f);
-  const double *x = gm_complex_coordinates(gm_fluid_complex(f));
+  const size_t nv = gm_fluid_n_vertices(f), sd = gm_fluid_space_dim(f);
+  const double *x = gm_fluid_coordinates(f);
   double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-  for (size_t v = 0; v < nv; ++v)
+  const double *xm = gm_complex_coordinates(gm_fluid_complex(f)); /* the box of the whole mesh */
+  for (size_t v = 0; v < gm_complex_count(gm_fluid_complex(f), 0); ++v)
     for (int k = 0; k < 2; ++k) {
-      lo[k] = fmin(lo[k], x[2 * v + k]);
-      hi[k] = fmax(hi[k], x[2 * v + k]);
+      lo[k] = fmin(lo[k], xm[sd * v + (size_t)k]);
+      hi[k] = fmax(hi[k], xm[sd * v + (size_t)k]);
     }
+  for (int k = 0; k < 2; ++k) /* a periodic box is one period long (its seams may zigzag) */
+    if (f->period[k] > 0) hi[k] = lo[k] + f->period[k];
   double *psi = malloc(2 * nv * sizeof *psi);
   if (!psi) {
     gm_fluid_free(f);
@@ -343,9 +408,24 @@ gm_status gm_fluid_case_solver(const gm_fluid_case *c, gm_fluid **out, gm_error 
   }
   double *theta = psi + nv, A = c->initial_amplitude;
   for (size_t v = 0; v < nv; ++v) {
-    double X = (x[2 * v] - lo[0]) / (hi[0] - lo[0]), Y = (x[2 * v + 1] - lo[1]) / (hi[1] - lo[1]);
-    psi[v] = A * (sin(GM_PI * X) * sin(GM_PI * Y) + 0.5 * sin(2 * GM_PI * X) * sin(GM_PI * Y));
+    const double *p = x + sd * v;
+    if (sd == 3) { /* directions on the unit sphere; θ: a blob at latitude 30°, longitude 0 */
+      double r = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), u[3] = {p[0] / r, p[1] / r, p[2] / r};
+      psi[v] = r * r * gm_fluid_rossby_haurwitz_psi(u);
+      double d2 = (u[0] - sqrt(0.75)) * (u[0] - sqrt(0.75)) + u[1] * u[1] + (u[2] - 0.5) * (u[2] - 0.5);
+      theta[v] = exp(-20.0 * d2);
+      continue;
+    }
+    double X = (p[0] - lo[0]) / (hi[0] - lo[0]), Y = (p[1] - lo[1]) / (hi[1] - lo[1]);
     theta[v] = exp(-20.0 * ((X - 0.3) * (X - 0.3) + (Y - 0.6) * (Y - 0.6)));
+    if (c->initial == GM_FLUID_INIT_TAYLOR_GREEN) {
+      psi[v] = A * sin(2 * GM_PI * X) * sin(2 * GM_PI * Y);
+    } else if (c->initial == GM_FLUID_INIT_DOUBLE_SHEAR) { /* scaled from [0, 2π]² */
+      double q[2] = {2 * GM_PI * X, 2 * GM_PI * Y};
+      psi[v] = gm_fluid_double_shear_psi(q) * (hi[1] - lo[1]) / (2 * GM_PI);
+    } else {
+      psi[v] = A * (sin(GM_PI * X) * sin(GM_PI * Y) + 0.5 * sin(2 * GM_PI * X) * sin(GM_PI * Y));
+    }
   }
   st = gm_fluid_set_state(f, psi, theta);
   free(psi);

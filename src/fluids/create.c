@@ -33,6 +33,13 @@ void gm_fluid_free(gm_fluid *f) {
   free(f->grad);
   gm_csr_free(f->L);
   gm_csr_free(f->S);
+  free(f->rep);
+  free(f->tri_own);
+  free(f->edge_own);
+  free(f->xq);
+  free(f->normal);
+  free(f->coriolis);
+  gm_sparse_cholesky_free(f->m_visc);
   free(f->b_tail);
   free(f->b_head);
   free(f->b_circ);
@@ -174,28 +181,47 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
                         opt.velocity_scale);
   if (opt.scheme != GM_FLUID_SEED && opt.scheme != GM_FLUID_MIDPOINT)
     return gm_error_set(err, GM_EINVAL, "fluid: unknown scheme %d", (int)opt.scheme);
-  if (opt.scheme == GM_FLUID_MIDPOINT && opt.nu != 0.0)
-    return gm_error_set(err, GM_EINVAL,
-                        "fluid: the midpoint scheme is inviscid: nu must be 0 (got %g)", opt.nu);
   if (opt.stress_free_walls && opt.scheme != GM_FLUID_MIDPOINT)
     return gm_error_set(err, GM_EINVAL,
                         "fluid: stress_free_walls applies to the midpoint scheme only");
   if (!(opt.midpoint_tol > 0.0) || opt.midpoint_max_iter == 0)
     return gm_error_set(err, GM_EINVAL,
                         "fluid: midpoint_tol must be > 0 and midpoint_max_iter >= 1");
-  if (mesh->dim != 2 || mesh->N != 2)
+  if (!(isfinite(opt.rotation)))
+    return gm_error_set(err, GM_EINVAL, "fluid: rotation = %g must be finite", opt.rotation);
+  if (mesh->dim != 2 || (mesh->N != 2 && mesh->N != 3))
     return gm_error_set(
         err, GM_EUNSUPPORTED,
-        "fluid: needs a flat triangle mesh (dim 2 in the plane), got dim %zu in R^%zu", mesh->dim,
-        mesh->N);
+        "fluid: needs a triangle mesh in the plane or a surface in R^3, got dim %zu in R^%zu",
+        mesh->dim, mesh->N);
+  int closed = mesh->N == 3;
+  for (size_t i = 0; i < n_bcs; ++i) closed |= bcs[i].kind == GM_FLUID_PERIODIC;
+  if (!closed && opt.scheme == GM_FLUID_MIDPOINT && opt.nu != 0.0)
+    return gm_error_set(err, GM_EINVAL,
+                        "fluid: the midpoint scheme with walls is inviscid: nu must be 0 (got %g); "
+                        "viscosity needs a domain without boundary (periodic or closed surface)",
+                        opt.nu);
+  if (opt.rotation != 0.0 && mesh->N != 3)
+    return gm_error_set(err, GM_EINVAL, "fluid: rotation applies to surfaces in R^3 only");
+  if (closed && opt.stress_free_walls)
+    return gm_error_set(err, GM_EINVAL, "fluid: stress_free_walls: the domain has no walls");
   for (size_t i = 0; i < n_bcs; ++i) {
     const gm_fluid_bc *b = &bcs[i];
     if (!b->group) return gm_error_set(err, GM_EINVAL, "fluid: bcs[%zu].group is NULL", i);
-    if (b->kind > GM_FLUID_OUTFLOW || b->scalar > GM_SCALAR_DIRICHLET)
+    if (b->kind > GM_FLUID_PERIODIC || b->scalar > GM_SCALAR_DIRICHLET)
       return gm_error_set(err, GM_EINVAL, "fluid: bcs[%zu] (\"%s\"): unknown kind", i, b->group);
     if (!isfinite(b->velocity[0]) || !isfinite(b->velocity[1]) || !isfinite(b->speed) ||
         !isfinite(b->scalar_value))
       return gm_error_set(err, GM_EDOMAIN, "fluid: bcs[%zu] (\"%s\"): non-finite value", i,
+                          b->group);
+    if (b->kind == GM_FLUID_PERIODIC && !b->partner)
+      return gm_error_set(err, GM_EINVAL, "fluid: bcs[%zu] (\"%s\"): periodic without a partner",
+                          i, b->group);
+    if (b->kind == GM_FLUID_PERIODIC) continue;
+    if (closed)
+      return gm_error_set(err, GM_EUNSUPPORTED,
+                          "fluid: group \"%s\" is not periodic: every boundary group of a periodic "
+                          "domain must be (periodic channels with walls are not implemented)",
                           b->group);
     if (opt.scheme == GM_FLUID_MIDPOINT &&
         (b->kind != GM_FLUID_WALL || b->velocity[0] != 0.0 || b->velocity[1] != 0.0))
@@ -210,6 +236,16 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
   for (size_t g = 0; g < groups->n_groups; ++g) bc_of_group[g] = SIZE_MAX;
   for (size_t i = 0; i < n_bcs; ++i) {
     size_t g = 0;
+    if (bcs[i].kind == GM_FLUID_PERIODIC) {
+      while (g < groups->n_groups && strcmp(groups->names[g], bcs[i].partner) != 0) ++g;
+      if (g == groups->n_groups) {
+        free(bc_of_group);
+        return gm_error_set(err, GM_ENOTFOUND,
+                            "fluid: periodic partner \"%s\" of bcs[%zu] (\"%s\") is not in the mesh",
+                            bcs[i].partner, i, bcs[i].group);
+      }
+      g = 0;
+    }
     while (g < groups->n_groups && strcmp(groups->names[g], bcs[i].group) != 0) ++g;
     if (g == groups->n_groups) {
       free(bc_of_group);
@@ -269,6 +305,51 @@ gm_status gm_fluid_create(const gm_mesh *mesh, const gm_fluid_groups *groups, si
           neg1, f->ne, neg0, f->nv, bad_tri, f->nt);
       goto done;
     }
+  }
+  f->sdim = mesh->N;
+  if (closed) {
+    size_t *rep = NULL, nq = f->nv;
+    if (mesh->N == 3) {
+      if (n_bcs || groups->n_edges) {
+        st = GM_EUNSUPPORTED;
+        snprintf(msg, sizeof msg, "fluid: surfaces in R^3 must be closed (no boundary groups)");
+        goto done;
+      }
+      if ((st = gm_fluid_manifold_check(f->cx, msg, sizeof msg))) goto done;
+    } else {
+      /* every boundary edge in a periodic group or a partner */
+      const unsigned char *bm = gm_complex_boundary_mask(f->cx, 1);
+      size_t covered = 0;
+      for (size_t i = 0; i < groups->n_edges; ++i) {
+        const char *name = groups->names[groups->group[i] < groups->n_groups ? groups->group[i] : 0];
+        int per = 0;
+        for (size_t b = 0; b < n_bcs; ++b)
+          per |= strcmp(bcs[b].group, name) == 0 || strcmp(bcs[b].partner, name) == 0;
+        size_t ev[2] = {groups->vertices[2 * i], groups->vertices[2 * i + 1]};
+        size_t e = ev[0] < mesh->n_vertices && ev[1] < mesh->n_vertices
+                       ? gm_complex_find(f->cx, 1, ev)
+                       : SIZE_MAX;
+        if (per && e != SIZE_MAX && bm[e]) ++covered;
+      }
+      if (covered != gm_complex_boundary_count(f->cx, 1)) {
+        st = GM_EUNSUPPORTED;
+        snprintf(msg, sizeof msg,
+                 "fluid: %zu of %zu boundary edges are in periodic groups: every boundary edge of "
+                 "a periodic domain must be (periodic channels with walls are not implemented)",
+                 covered, gm_complex_boundary_count(f->cx, 1));
+        goto done;
+      }
+      if ((st = gm_fluid_periodic_map(mesh, groups, n_bcs, bcs, &rep, &nq, f->period, msg,
+                                      sizeof msg)))
+        goto done;
+    }
+    f->closed = 1;
+    st = gm_fluid_create_closed(f, rep, nq, msg, sizeof msg);
+    if (!st) {
+      memset(f->psi, 0, f->nv * sizeof(double));
+      gm_fluid_circulation_of(f, f->psi, f->gamma);
+    }
+    goto done;
   }
   ALLOC(f->star0, f->nv);
   ALLOC(f->star1, f->ne);

@@ -43,6 +43,18 @@ struct gm_fluid {
   double *u_edge, *out, *rhs, *rhs_w, *sol;
   double dt_bound, t, h_min;
   size_t step, last_iterations;
+  /* domains without boundary (src/fluids/closed.c) */
+  int closed;
+  size_t sdim;            /* 2: plane, 3: surface in R³; grad has 3·sdim values per triangle */
+  size_t n_mesh_vertices; /* the mesh's vertices (nv: the solver's, after periodic identification) */
+  size_t *rep;            /* mesh vertex -> solver vertex (NULL: identity) */
+  size_t *tri_own;
+  size_t *edge_own;       /* quotient edges (f->edge points here when closed, seed scheme) */        /* triangles in solver vertices (f->tri points here when closed) */
+  double *xq;             /* coordinates per solver vertex */
+  double *normal;         /* unit normal per triangle (surfaces) */
+  double *coriolis;       /* f = 2Ω z/|x| per solver vertex (closed domains) */
+  double period[2];       /* the periodic translations along x and y (0: none) */
+  gm_sparse_cholesky *m_visc;
   char errmsg[GM_ERRMSG_SIZE];
 };
 
@@ -55,5 +67,19 @@ void gm_fluid_circulation_of(const gm_fluid *f, const double *psi, double *gamma
 void gm_fluid_convective_outflow(gm_fluid *f, const double *q, const double *psi, double *out);
 /* ∫ φ_v ∇ψ × ∇ζ per vertex (the P1 Jacobian of the midpoint scheme). */
 void gm_fluid_jacobian(gm_fluid *f, const double *psi, const double *zeta, double *rate);
+
+/* src/fluids/closed.c: the vertex classes of the periodic pairs among bcs (rep: mesh vertex ->
+ * class, increasing along the classes' lowest vertices; *nq classes). */
+gm_status gm_fluid_periodic_map(const gm_mesh *mesh, const gm_fluid_groups *groups, size_t n_bcs,
+                                const gm_fluid_bc *bcs, size_t **rep, size_t *nq,
+                                double period[2], char *msg, size_t msg_size);
+/* Every edge on two triangles and every vertex's triangles one fan; else GM_EINVAL with counts. */
+gm_status gm_fluid_manifold_check(const gm_complex *cx, char *msg, size_t msg_size);
+/* Initial stream functions of src/fluids/flows.c: the double shear layer at a point of
+ * [0, 2π]², the Rossby–Haurwitz wave at a point of the unit sphere. */
+double gm_fluid_double_shear_psi(const double *x);
+double gm_fluid_rossby_haurwitz_psi(const double *x);
+/* Everything of the solver on a domain without boundary (takes ownership of rep). */
+gm_status gm_fluid_create_closed(gm_fluid *f, size_t *rep, size_t nq, char *msg, size_t msg_size);
 
 #endif

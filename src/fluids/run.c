@@ -14,6 +14,7 @@ typedef struct writer {
   size_t n_vtu, cap;
   double *times;
   double *zeta, *u3;
+  double *pull; /* 3 fields pulled back to the mesh's vertices (periodic meshes) */
 } writer;
 
 static gm_status write_pvd(writer *w, gm_error *err) {
@@ -41,16 +42,26 @@ static gm_status write_vtu(writer *w, const gm_fluid *f, gm_error *err) {
   }
   const size_t nt = gm_fluid_n_triangles(f);
   gm_fluid_vorticity(f, w->zeta);
-  gm_fluid_velocity(f, w->u3); /* 2 per triangle, spread to 3 below (from the end) */
-  for (size_t t = nt; t-- > 0;) {
-    double ux = w->u3[2 * t], uy = w->u3[2 * t + 1];
-    w->u3[3 * t] = ux;
-    w->u3[3 * t + 1] = uy;
-    w->u3[3 * t + 2] = 0.0;
+  gm_fluid_velocity(f, w->u3); /* 2 per triangle in the plane, spread to 3 (from the end) */
+  if (gm_fluid_space_dim(f) == 2)
+    for (size_t t = nt; t-- > 0;) {
+      double ux = w->u3[2 * t], uy = w->u3[2 * t + 1];
+      w->u3[3 * t] = ux;
+      w->u3[3 * t + 1] = uy;
+      w->u3[3 * t + 2] = 0.0;
+    }
+  const double *vf[3] = {gm_fluid_psi(f), gm_fluid_theta(f), w->zeta};
+  const size_t *map = gm_fluid_vertex_map(f);
+  if (map) {
+    const size_t nm = gm_complex_count(gm_fluid_complex(f), 0);
+    for (int k = 0; k < 3; ++k) {
+      for (size_t v = 0; v < nm; ++v) w->pull[k * nm + v] = vf[k][map[v]];
+      vf[k] = w->pull + k * nm;
+    }
   }
-  gm_vtu_field fields[4] = {{"psi", 0, 1, gm_fluid_psi(f)},
-                            {"theta", 0, 1, gm_fluid_theta(f)},
-                            {"vorticity", 0, 1, w->zeta},
+  gm_vtu_field fields[4] = {{"psi", 0, 1, vf[0]},
+                            {"theta", 0, 1, vf[1]},
+                            {"vorticity", 0, 1, vf[2]},
                             {"velocity", 2, 3, w->u3}};
   char path[4096];
   snprintf(path, sizeof path, "%s/fluid_%06zu.vtu", w->dir, w->n_vtu);
@@ -72,7 +83,7 @@ gm_status gm_fluid_case_run(const gm_fluid_case *c, const char *out_dir, gm_flui
   gm_fluid *f = NULL;
   gm_status st = gm_fluid_case_solver(c, &f, err);
   if (st) return st;
-  writer w = {out_dir, NULL, 0, 0, NULL, NULL, NULL};
+  writer w = {out_dir, NULL, 0, 0, NULL, NULL, NULL, NULL};
   const size_t nv = gm_fluid_n_vertices(f), nt = gm_fluid_n_triangles(f);
   size_t n_steps = (size_t)floor(c->t_end / c->options.dt + 0.5);
   if (out_dir) {
@@ -81,11 +92,12 @@ gm_status gm_fluid_case_run(const gm_fluid_case *c, const char *out_dir, gm_flui
     w.csv = fopen(path, "w");
     w.zeta = malloc(nv * sizeof *w.zeta);
     w.u3 = malloc(3 * nt * sizeof *w.u3);
+    w.pull = malloc(3 * gm_complex_count(gm_fluid_complex(f), 0) * sizeof *w.pull);
     if (!w.csv) {
       st = gm_error_set(err, GM_EIO, "cannot write %s: %s", path, strerror(errno));
       goto done;
     }
-    if (!w.zeta || !w.u3) {
+    if (!w.zeta || !w.u3 || !w.pull) {
       st = gm_error_set(err, GM_ENOMEM, "out of memory");
       goto done;
     }
@@ -115,6 +127,7 @@ done:
   free(w.times);
   free(w.zeta);
   free(w.u3);
+  free(w.pull);
   gm_fluid_free(f);
   return st;
 }

@@ -36,6 +36,12 @@ static void vorticity_of(const gm_fluid *f, const double *gamma, double *zeta) {
   for (size_t v = 0; v < f->nv; ++v) zeta[v] = gamma[v] / f->star0[v];
 }
 
+/* The convected vorticity is the absolute one, ζ + f, in a rotating frame (surfaces). */
+static void add_coriolis(const gm_fluid *f, double *zeta) {
+  if (f->closed && f->opt.rotation != 0.0)
+    for (size_t v = 0; v < f->nv; ++v) zeta[v] += f->coriolis[v];
+}
+
 /* Solve the SPD system ch on the free vertices with right-hand side rhs[v] (all vertices) plus
  * c (free vertices), and write ψ (Dirichlet values elsewhere). */
 static gm_status solve_psi(gm_fluid *f, gm_sparse_cholesky *ch, const double *rhs, const double *c,
@@ -53,7 +59,12 @@ static gm_status solve_psi(gm_fluid *f, gm_sparse_cholesky *ch, const double *rh
  * here it is lagged to θ^n so that the matrix (⋆0/dt + κL) is factorized once at create. */
 static gm_status scalar_step(gm_fluid *f, const double *psi_half) {
   if (!f->n_wfree) return GM_OK;
-  gm_fluid_convective_outflow(f, f->theta, psi_half, f->out);
+  if (f->closed && f->opt.scheme == GM_FLUID_MIDPOINT) {
+    /* the P1 Jacobian, −∫ φ_v u·∇θ (conserves Σ ⋆0 θ) */
+    gm_fluid_jacobian(f, psi_half, f->theta, f->out);
+    for (size_t v = 0; v < f->nv; ++v) f->out[v] = -f->out[v];
+  } else
+    gm_fluid_convective_outflow(f, f->theta, psi_half, f->out);
   for (size_t i = 0; i < f->n_wfree; ++i) {
     size_t v = f->wfree_list[i];
     f->rhs_w[i] = f->star0[v] * f->theta[v] / f->opt.dt - f->out[v] + f->c_theta[i];
@@ -74,12 +85,14 @@ static gm_status scalar_step(gm_fluid *f, const double *psi_half) {
 static gm_status seed_step(gm_fluid *f) {
   const double dt = f->opt.dt;
   vorticity_of(f, f->gamma, f->zeta);
+  add_coriolis(f, f->zeta);
   gm_fluid_convective_outflow(f, f->zeta, f->psi, f->out);
   for (size_t v = 0; v < f->nv; ++v) f->rhs[v] = f->gamma[v] - 0.5 * dt * f->out[v];
   gm_status st = solve_psi(f, f->m_half, f->rhs, f->c_half, f->psi_h);
   if (st) return st;
   gm_fluid_circulation_of(f, f->psi_h, f->gamma_h);
   vorticity_of(f, f->gamma_h, f->zeta_h);
+  add_coriolis(f, f->zeta_h);
   gm_fluid_convective_outflow(f, f->zeta_h, f->psi_h, f->out);
   for (size_t v = 0; v < f->nv; ++v) f->rhs[v] = f->gamma[v] - dt * f->out[v];
   st = solve_psi(f, f->m_full, f->rhs, f->c_full, f->psi_k);
@@ -91,23 +104,38 @@ static gm_status seed_step(gm_fluid *f) {
   return GM_OK;
 }
 
-/* Γ̇_v = ∫ φ_v (∇ψ × ∇ζ) = Σ_{T ∋ v} (|T|/3) (∇ψ_T × ∇ζ_T) for the P1 interpolants: the trilinear
- * form t(a, b, c) = ∫ a ∇b × ∇c is integrated exactly, so it is antisymmetric in (b, c) and, with
- * ψ = 0 on the boundary, in (a, b): Σ ψ_v Γ̇_v = Σ ζ_v Γ̇_v = Σ Γ̇_v = 0 (energy ½ψᵀLψ, enstrophy,
- * total vorticity). The vorticity equation ζ_t + u·∇ζ = 0 with u = (ψ_y, −ψ_x). */
+/* ∇ of the linear interpolant of the vertex field q on triangle t (sdim values; g[2] = 0 in the
+ * plane). */
+static void tri_gradient(const gm_fluid *f, size_t t, const double *q, double g[3]) {
+  const size_t sd = f->sdim;
+  g[0] = g[1] = g[2] = 0.0;
+  for (size_t k = 0; k < 3; ++k) {
+    const double *gk = f->grad + (3 * t + k) * sd, v = q[f->tri[3 * t + k]];
+    for (size_t c = 0; c < sd; ++c) g[c] += v * gk[c];
+  }
+}
+
+/* n · (a × b): n = ẑ in the plane, the triangle's unit normal on a surface */
+static double normal_cross(const gm_fluid *f, size_t t, const double *a, const double *b) {
+  double z = a[0] * b[1] - a[1] * b[0];
+  if (f->sdim == 2) return z;
+  const double *n = f->normal + 3 * t;
+  return n[0] * (a[1] * b[2] - a[2] * b[1]) + n[1] * (a[2] * b[0] - a[0] * b[2]) + n[2] * z;
+}
+
+/* Γ̇_v = ∫ φ_v n·(∇ψ × ∇ζ) = Σ_{T ∋ v} (|T|/3) n_T·(∇ψ_T × ∇ζ_T) for the P1 interpolants: the
+ * trilinear form t(a, b, c) = ∫ a n·(∇b × ∇c) is integrated exactly, so it is antisymmetric in
+ * (b, c) and, with ψ = 0 on the boundary or without boundary, in (a, b): Σ ψ_v Γ̇_v =
+ * Σ ζ_v Γ̇_v = Σ Γ̇_v = 0 (energy ½ψᵀLψ, enstrophy, total vorticity). The vorticity equation
+ * ζ_t + u·∇ζ = 0 with u = ∇ψ × n = (ψ_y, −ψ_x). */
 void gm_fluid_jacobian(gm_fluid *f, const double *psi, const double *zeta, double *rate) {
   memset(rate, 0, f->nv * sizeof *rate);
   for (size_t t = 0; t < f->nt; ++t) {
     const size_t *v = f->tri + 3 * t;
-    const double *g = f->grad + 6 * t;
-    double px = 0, py = 0, zx = 0, zy = 0;
-    for (int k = 0; k < 3; ++k) {
-      px += psi[v[k]] * g[2 * k];
-      py += psi[v[k]] * g[2 * k + 1];
-      zx += zeta[v[k]] * g[2 * k];
-      zy += zeta[v[k]] * g[2 * k + 1];
-    }
-    double j = f->area[t] / 3.0 * (px * zy - py * zx);
+    double gp[3], gz[3];
+    tri_gradient(f, t, psi, gp);
+    tri_gradient(f, t, zeta, gz);
+    double j = f->area[t] / 3.0 * normal_cross(f, t, gp, gz);
     rate[v[0]] += j;
     rate[v[1]] += j;
     rate[v[2]] += j;
@@ -122,12 +150,21 @@ static gm_status midpoint_step(gm_fluid *f) {
   double scale = 0.0;
   for (size_t v = 0; v < f->nv; ++v) scale = fmax(scale, fabs(f->gamma[v]));
   memcpy(f->gamma_k, f->gamma, f->nv * sizeof(double));
+  if (f->m_visc) {
+    vorticity_of(f, f->gamma, f->zeta);
+    gm_csr_matvec(f->L, -0.5 * dt * f->opt.nu, f->zeta, 0.0, f->rhs);
+    for (size_t v = 0; v < f->nv; ++v) f->rhs[v] += f->gamma[v];
+  }
   double previous = INFINITY;
   for (size_t it = 1; it <= f->opt.midpoint_max_iter; ++it) {
     for (size_t v = 0; v < f->nv; ++v) f->gamma_h[v] = 0.5 * (f->gamma[v] + f->gamma_k[v]);
     gm_status st = solve_psi(f, f->poisson, f->gamma_h, NULL, f->psi_h);
     if (st) return st;
     vorticity_of(f, f->gamma_h, f->zeta_h);
+    /* rotating frame: the Jacobian advects the absolute vorticity ζ + f (barotropic vorticity
+     * equation); t(ψ, ψ, ζ+f) = 0 and t(1, ψ, ζ+f) = 0 keep energy and total vorticity, and
+     * t(ζ+f, ψ, ζ+f) = 0 the potential enstrophy ½ Σ ⋆0 (ζ+f)². */
+    add_coriolis(f, f->zeta_h);
     /* Stress-free walls: ζ̃ = 0 where ψ is fixed. Still Σ ψ_v Γ̇_v = t(ψ, ψ, ζ̃) = 0 and
      * Σ Γ̇_v = 0 (ψ constant on the wall), and Σ ζ̃_v Γ̇_v = t(ζ̃, ψ, ζ̃) = 0 with Σ ζ̃_v Γ_v = twice
      * the interior enstrophy: the quadratic invariants kept by the midpoint rule. */
@@ -135,6 +172,14 @@ static gm_status midpoint_step(gm_fluid *f) {
       for (size_t v = 0; v < f->nv; ++v)
         if (f->psi_fixed[v]) f->zeta_h[v] = 0.0;
     gm_fluid_jacobian(f, f->psi_h, f->zeta_h, f->out);
+    if (f->m_visc) {
+      /* viscosity, implicit in the midpoint rule: ⋆0 (ζ^{k+1} − ζ^n)/dt = J − ν L (ζ^n + ζ^{k+1})/2,
+       * i.e. (⋆0 + ν dt/2 L) ζ^{k+1} = Γ^n − ν dt/2 L ζ^n + dt J (f->rhs holds all but dt J) */
+      for (size_t v = 0; v < f->nv; ++v) f->sol[v] = f->rhs[v] + dt * f->out[v];
+      st = gm_sparse_cholesky_solve(f->m_visc, f->sol, f->sol);
+      if (st) return st;
+      for (size_t v = 0; v < f->nv; ++v) f->out[v] = (f->star0[v] * f->sol[v] - f->gamma[v]) / dt;
+    }
     double change = 0.0;
     for (size_t v = 0; v < f->nv; ++v) {
       double g = f->gamma[v] + dt * f->out[v];
@@ -194,12 +239,9 @@ gm_status gm_fluid_set_state(gm_fluid *f, const double *psi, const double *theta
   if (psi) {
     double umax = 0.0;
     for (size_t t = 0; t < f->nt; ++t) {
-      double gx = 0, gy = 0;
-      for (int k = 0; k < 3; ++k) {
-        gx += psi[f->tri[3 * t + k]] * f->grad[6 * t + 2 * k];
-        gy += psi[f->tri[3 * t + k]] * f->grad[6 * t + 2 * k + 1];
-      }
-      umax = fmax(umax, sqrt(gx * gx + gy * gy));
+      double g[3];
+      tri_gradient(f, t, psi, g);
+      umax = fmax(umax, sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]));
     }
     double bound = fmin(f->dt_bound, umax > 0 ? 2.0 * f->h_min / umax : INFINITY);
     if (f->opt.scheme == GM_FLUID_SEED && f->opt.dt > bound) {
@@ -210,7 +252,10 @@ gm_status gm_fluid_set_state(gm_fluid *f, const double *psi, const double *theta
       return GM_EINVAL;
     }
     f->dt_bound = bound;
-    for (size_t v = 0; v < f->nv; ++v) f->psi[v] = f->psi_fixed[v] ? f->psi_bc[v] : psi[v];
+    if (f->closed) /* no boundary: only the gauge vertex is fixed, so shift ψ to ψ = 0 there */
+      for (size_t v = 0; v < f->nv; ++v) f->psi[v] = psi[v] - psi[0];
+    else
+      for (size_t v = 0; v < f->nv; ++v) f->psi[v] = f->psi_fixed[v] ? f->psi_bc[v] : psi[v];
     gm_fluid_circulation_of(f, f->psi, f->gamma);
   }
   if (theta)
@@ -233,18 +278,35 @@ void gm_fluid_vorticity(const gm_fluid *f, double *zeta) { vorticity_of(f, f->ga
 
 void gm_fluid_velocity(const gm_fluid *f, double *u) {
   for (size_t t = 0; t < f->nt; ++t) {
-    double gx = 0, gy = 0;
-    for (int k = 0; k < 3; ++k) {
-      gx += f->psi[f->tri[3 * t + k]] * f->grad[6 * t + 2 * k];
-      gy += f->psi[f->tri[3 * t + k]] * f->grad[6 * t + 2 * k + 1];
+    double g[3];
+    tri_gradient(f, t, f->psi, g);
+    if (f->sdim == 2) {
+      u[2 * t] = g[1];
+      u[2 * t + 1] = -g[0];
+    } else { /* u = ∇ψ × n */
+      const double *n = f->normal + 3 * t;
+      u[3 * t] = g[1] * n[2] - g[2] * n[1];
+      u[3 * t + 1] = g[2] * n[0] - g[0] * n[2];
+      u[3 * t + 2] = g[0] * n[1] - g[1] * n[0];
     }
-    u[2 * t] = gy;
-    u[2 * t + 1] = -gx;
   }
 }
 
+const size_t *gm_fluid_vertex_map(const gm_fluid *f) { return f->rep; }
+size_t gm_fluid_space_dim(const gm_fluid *f) { return f->sdim; }
+const double *gm_fluid_coordinates(const gm_fluid *f) { return f->closed ? f->xq : f->x; }
+
 void gm_fluid_flux(const gm_fluid *f, double *flux) {
-  gm_csr_matvec(gm_complex_d(f->cx, 0), 1.0, f->psi, 0.0, flux);
+  const gm_csr *d0 = gm_complex_d(f->cx, 0);
+  if (!f->rep) {
+    gm_csr_matvec(d0, 1.0, f->psi, 0.0, flux);
+    return;
+  }
+  for (size_t e = 0; e < d0->n_rows; ++e) { /* ψ pulled back to the mesh's vertices */
+    flux[e] = 0.0;
+    for (size_t k = d0->row_start[e]; k < d0->row_start[e + 1]; ++k)
+      flux[e] += d0->val[k] * f->psi[f->rep[d0->col[k]]];
+  }
 }
 
 void gm_fluid_diagnose(const gm_fluid *f, gm_fluid_diagnostics *d) {
@@ -252,26 +314,24 @@ void gm_fluid_diagnose(const gm_fluid *f, gm_fluid_diagnostics *d) {
   d->time = f->t;
   const gm_csr *d0 = gm_complex_d(f->cx, 0), *d1 = gm_complex_d(f->cx, 1);
   for (size_t t = 0; t < f->nt; ++t) {
-    double gx = 0, gy = 0;
-    for (int k = 0; k < 3; ++k) {
-      gx += f->psi[f->tri[3 * t + k]] * f->grad[6 * t + 2 * k];
-      gy += f->psi[f->tri[3 * t + k]] * f->grad[6 * t + 2 * k + 1];
-    }
-    d->kinetic_energy += 0.5 * f->area[t] * (gx * gx + gy * gy);
-    /* net flux out of T: Σ over its edges of ± dψ, i.e. (d1 d0 ψ)_T (δω = 0 by d∘d = 0) */
+    double g[3];
+    tri_gradient(f, t, f->psi, g);
+    d->kinetic_energy += 0.5 * f->area[t] * (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    /* net flux out of T: Σ over its edges of ± dψ, i.e. (d1 d0 ψ)_T (δω = 0 by d∘d = 0); the
+     * mesh's d0, d1 on ψ pulled back to the mesh vertices when they were identified */
     double net = 0.0;
     for (size_t k = d1->row_start[t]; k < d1->row_start[t + 1]; ++k) {
       size_t e = d1->col[k];
       double fe = 0.0;
       for (size_t m = d0->row_start[e]; m < d0->row_start[e + 1]; ++m)
-        fe += d0->val[m] * f->psi[d0->col[m]];
+        fe += d0->val[m] * f->psi[f->rep ? f->rep[d0->col[m]] : d0->col[m]];
       net += d1->val[k] * fe;
     }
     d->div_max = fmax(d->div_max, fabs(net));
   }
   for (size_t v = 0; v < f->nv; ++v) {
     d->enstrophy += 0.5 * f->gamma[v] * f->gamma[v] / f->star0[v];
-    if (!f->psi_fixed[v]) d->interior_enstrophy += 0.5 * f->gamma[v] * f->gamma[v] / f->star0[v];
+    if (!f->psi_fixed[v] || f->closed) d->interior_enstrophy += 0.5 * f->gamma[v] * f->gamma[v] / f->star0[v];
     d->total_vorticity += f->gamma[v];
     d->scalar_mass += f->star0[v] * f->theta[v];
   }
