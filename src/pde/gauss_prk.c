@@ -126,8 +126,9 @@ static void residual(gm_pde *p, const double *x, double *F) {
  * a cyclic block-bidiagonal system in the 2d_f node values of the components with an
  * x-derivative (the 𝕂-free ones have Y = 0, see k_free). Rows of cell m sit at block m + 1
  * (block 0 for the last cell), so the matrix is banded (kl = 2·2d_f − 1, ku = 0) plus the
- * wrap-around block in the last columns: gm_bband, O(N) memory. Same equations as the full
- * (Z, Y) system; the elimination order differs, so results agree to round-off, not bitwise. */
+ * wrap-around block in the last columns: gm_bband, O(N) memory, L not kept (band_border.c).
+ * Same equations as the full (Z, Y) system; the elimination order differs, so results agree
+ * to round-off, not bitwise. */
 
 /* the components with an x-derivative; returns their number d_f */
 static size_t k_coupled(const gm_pde *p, size_t *idx) {
@@ -171,16 +172,18 @@ static gm_status cell_local(gm_pde *p, const double *x, size_t m, const double *
   return GM_OK;
 }
 
-/* Solve J out = R at iterate x (R and out: 6d per cell, may alias). assemble: build and
- * factor the condensed matrix first (else reuse the last factorization, made at this x). */
-static gm_status newton_solve(gm_pde *p, const double *x, const double *R, double *out,
-                              int assemble) {
+/* Solve J out = R at iterate x (R and out: 6d per cell, may alias): assemble the condensed
+ * matrix and eliminate it with its right-hand side as the cells arrive. Cell M − 1 gives row
+ * block 0; then cell m gives row block m + 1, after which column block m can be eliminated
+ * (its pivot rows are in blocks m and m + 1), so only a window of rows is ever held. */
+static gm_status newton_solve(gm_pde *p, const double *x, const double *R, double *out) {
   size_t M = p->n / 2, d = p->d, B = 6 * d, nz = 4 * d, idx[GM_PDE_MAX_DIM];
   size_t df = k_coupled(p, idx), nb = 2 * df;
   int piv[4 * GM_PDE_MAX_DIM];
   double *Am = p->gp_cell, *AinvC = Am + nz * nz, *AinvR = AinvC + nz * nb;
-  if (assemble) gm_bband_zero(&p->gp_band);
-  for (size_t m = 0; m < M; m++) {
+  gm_bband_reset(&p->gp_band);
+  for (size_t s = 0; s < M; s++) {
+    size_t m = (s + M - 1) % M;
     if (cell_local(p, x, m, R + m * B, Am, piv, AinvC, AinvR, idx, df) != GM_OK)
       return GM_ESINGULAR;
     size_t rb = ((m + 1) % M) * nb, cb = m * nb;
@@ -191,7 +194,6 @@ static gm_status newton_solve(gm_pde *p, const double *x, const double *R, doubl
         double ev = 0.0;
         for (size_t k = 0; k < 2; k++) ev -= BETA[k] * AinvR[zk(d, i, k) + a];
         p->gp_b[r] = R[m * B + yk(d, i) + a] - ev;
-        if (!assemble) continue;
         gm_bband_add(&p->gp_band, r, r, 1.0);
         for (size_t c = 0; c < nb; c++) {
           double ec = 0.0;
@@ -199,12 +201,11 @@ static gm_status newton_solve(gm_pde *p, const double *x, const double *R, doubl
           gm_bband_add(&p->gp_band, r, cb + c, (c == i * df + fa ? -1.0 : 0.0) - ec);
         }
       }
+    if (s > 0 && gm_bband_eliminate(&p->gp_band, s * nb, p->gp_b) != GM_OK) return GM_ESINGULAR;
   }
-  if (assemble) {
-    p->stats.factorizations++;
-    if (gm_bband_factor(&p->gp_band) != GM_OK) return GM_ESINGULAR;
-  }
-  gm_bband_solve(&p->gp_band, p->gp_b); /* δY (block m = Y_m) */
+  p->stats.factorizations++;
+  if (gm_bband_eliminate(&p->gp_band, M * nb, p->gp_b) != GM_OK) return GM_ESINGULAR;
+  gm_bband_back(&p->gp_band, p->gp_b); /* δY (block m = Y_m) */
   for (size_t m = 0; m < M; m++) {
     if (cell_local(p, x, m, R + m * B, Am, piv, AinvC, AinvR, idx, df) != GM_OK)
       return GM_ESINGULAR;
@@ -271,7 +272,7 @@ static gm_status tangents(gm_pde *p) {
             for (size_t b = 0; b < d; b++) r += p->eq.W[a * d + b] * dz[(2 * m + j) * d + b];
             R[m * B + zk(d, i, j) + a] = r * (A_INV[i][0] + A_INV[i][1]) / dt;
           }
-    if (newton_solve(p, p->gp_x, R, p->gp_t[v], 0) != GM_OK) return GM_ESINGULAR;
+    if (newton_solve(p, p->gp_x, R, p->gp_t[v]) != GM_OK) return GM_ESINGULAR;
     time_update(p, p->gp_t[v], dz, p->tan[v][2]);
   }
   const double *U0 = p->tan[0][1], *U1 = p->tan[0][2], *V0 = p->tan[1][1], *V1 = p->tan[1][2];
@@ -319,7 +320,7 @@ gm_status gm_pde_gauss_step(gm_pde *p, gm_error *err) {
       return gm_error_set(err, GM_EDOMAIN, "pde gauss-prk: non-finite residual at step %zu",
                           p->steps + 1);
     for (size_t k = 0; k < nx; k++) p->gp_F[k] = -p->gp_F[k];
-    if (newton_solve(p, x, p->gp_F, p->gp_F, 1) != GM_OK)
+    if (newton_solve(p, x, p->gp_F, p->gp_F) != GM_OK)
       return gm_error_set(err, GM_ESINGULAR, "pde gauss-prk: singular Newton matrix at step %zu",
                           p->steps + 1);
     for (size_t k = 0; k < nx; k++) x[k] += p->gp_F[k];
@@ -335,9 +336,8 @@ gm_status gm_pde_gauss_step(gm_pde *p, gm_error *err) {
                         p->steps + 1, last);
   if (last > p->stats.max_newton_residual) p->stats.max_newton_residual = last;
   if (p->tan[0][0] != NULL) {
-    /* the tangents use the Newton matrix at the converged iterate */
-    memset(p->gp_F, 0, nx * sizeof *p->gp_F);
-    if (newton_solve(p, x, p->gp_F, p->gp_F, 1) != GM_OK || tangents(p) != GM_OK)
+    /* the tangents use the Newton matrix at the converged iterate (each solve factors it) */
+    if (tangents(p) != GM_OK)
       return gm_error_set(err, GM_ESINGULAR, "pde gauss-prk: singular tangent matrix at step %zu",
                           p->steps + 1);
   }

@@ -27,20 +27,25 @@ void gm_band_solve(const gm_band *b, double *x);
 void gm_ring_positions(size_t n, size_t *pos);
 
 /* ---- banded LU with a dense border of the last nb columns (band_border.c) ------------------ */
-/* For a periodic chain of blocks in natural order: band kl below / ku above the diagonal, plus
- * the wrap-around block in the last nb columns. Storage: band as gm_band (w = 2kl + ku + 1),
+/* For a periodic chain of blocks (block size bs) in natural order: band kl below / ku above the
+ * diagonal, plus the wrap-around block in the last nb columns. Factored and forward-eliminated
+ * with one right-hand side as the rows arrive (no L kept): reset, add the rows of the next
+ * blocks (within the window of nwin rows from column k), eliminate up to a column, ..., back.
+ * Storage: a window of nwin LINPACK-width rows, U packed (kl + ku + 1 − (k mod bs) per row),
  * border n·nb row-major. */
 typedef struct gm_bband {
-  size_t n, kl, ku, nb, w;
-  double *ab, *border; /* owned */
-  int *piv;            /* owned, n */
+  size_t n, kl, ku, nb, bs, w, ublock, nwin;
+  size_t k;                 /* next column to eliminate */
+  double *win, *u, *border; /* owned */
 } gm_bband;
-gm_status gm_bband_init(gm_bband *b, size_t n, size_t kl, size_t ku, size_t nb);
+gm_status gm_bband_init(gm_bband *b, size_t n, size_t kl, size_t ku, size_t nb, size_t bs);
 void gm_bband_release(gm_bband *b);
-void gm_bband_zero(gm_bband *b);
-void gm_bband_add(gm_bband *b, size_t r, size_t c, double v); /* in the band or the border */
-gm_status gm_bband_factor(gm_bband *b);
-void gm_bband_solve(const gm_bband *b, double *x);
+size_t gm_bband_bytes(const gm_bband *b); /* storage allocated by init */
+void gm_bband_reset(gm_bband *b);
+void gm_bband_add(gm_bband *b, size_t r, size_t c, double v); /* row r in the window */
+/* eliminate columns k..kend−1 (pivoting rows ≤ their profile, all added), applying to rhs */
+gm_status gm_bband_eliminate(gm_bband *b, size_t kend, double *rhs);
+void gm_bband_back(const gm_bband *b, double *x); /* after eliminating all n columns */
 
 struct gm_pde_observer {
   size_t every;

@@ -199,11 +199,14 @@ gm_status gm_pde_create(const gm_pde_grid *grid, const gm_pde_equation *eq,
       df += (size_t)coupled;
     }
     size_t nb = 2 * df, ny = nb * (n / 2);
-    ok &= df > 0 && gm_bband_init(&p->gp_band, ny, 2 * nb - 1, 0, nb) == GM_OK;
+    ok &= df > 0 && gm_bband_init(&p->gp_band, ny, 2 * nb - 1, 0, nb, nb) == GM_OK;
     ok &= (p->gp_x = vec(nx)) != NULL;
     ok &= (p->gp_F = vec(nx)) != NULL;
     ok &= (p->gp_b = vec(ny > 0 ? ny : 1)) != NULL;
     ok &= (p->gp_cell = vec(16 * d * d + 8 * d * d + 4 * d)) != NULL;
+    free(p->F); /* unused: the Newton vectors are gp_x, gp_F */
+    free(p->dx);
+    p->F = p->dx = NULL;
     free(p->hess); /* one stage's Hessian at a time */
     ok &= (p->hess = vec(d * d)) != NULL;
     if (options->track_variations)
