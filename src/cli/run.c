@@ -28,8 +28,9 @@ static const char usage[] =
     "  --steps N          take N steps of size H instead (not together with --t-end)\n"
     "  --every K          observe (monitor and CSV) every K steps (default 1 with --out or\n"
     "                     --plot; without them the energy monitor observes every K steps\n"
-    "                     with K = ceil(1024 / stages of the method), and the last step,\n"
-    "                     so that it costs under 1 % of the run: --every 1 for every step)\n"
+    "                     with K = ceil(1024 / stages of the method), at most 1/100 of the\n"
+    "                     planned steps, and the last step, so that it costs under 1 % of\n"
+    "                     the run: --every 1 for every step)\n"
     "  --out FILE.csv     write t, q, p (or y), H, rel_energy_error and the invariants\n"
     "  --plot FILE.png    draw the relative energy error against time with gnuplot\n"
     "  --set name=value   change a parameter or an initial value (q1.., p1.., y1..); repeatable\n"
@@ -69,15 +70,24 @@ typedef struct run_options {
  * splittings one fewer), so that it costs under 1 % of the run (issue 25; measured with
  * callgrind in docs/cli.md). Deterministic: a restarted run observes the same steps. */
 #define MONITOR_EVALS_PER_OBSERVATION 1024
+/* ... but never fewer than about this many observations of a run (a short run costs little
+ * either way, and its maxima should not rest on a handful of states) */
+#define MONITOR_MIN_OBSERVATIONS 100
 
-static size_t monitor_stride(const gm_scheme *sc) {
+static size_t monitor_stride(const gm_scheme *sc, const run_options *o) {
   size_t stages = sc->method->n_stages > 0 ? sc->method->n_stages : 1;
-  return (MONITOR_EVALS_PER_OBSERVATION + stages - 1) / stages;
+  size_t stride = (MONITOR_EVALS_PER_OBSERVATION + stages - 1) / stages;
+  /* the planned steps: --steps, or the span to --t-end in steps of --dt (from t = 0, so that a
+   * restarted run chooses the stride of the uninterrupted one) */
+  double planned = o->steps > 0 ? (double)o->steps : o->t_end / o->dt;
+  double cap = planned / MONITOR_MIN_OBSERVATIONS;
+  if (!(cap >= 1.0)) return 1;
+  return cap < (double)stride ? (size_t)cap : stride;
 }
 
 /* The monitor's stride of this run: --every's with an output file or when given. */
 static size_t monitor_every(const run_options *o, const gm_scheme *sc) {
-  return o->every_given || o->out != NULL || o->plot != NULL ? o->every : monitor_stride(sc);
+  return o->every_given || o->out != NULL || o->plot != NULL ? o->every : monitor_stride(sc, o);
 }
 
 static cJSON *final_state(const gm_problem *pb, const cli_sim_result *r) {

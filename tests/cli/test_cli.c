@@ -311,39 +311,56 @@ Test(cli, run_csv) {
   run_output_free(&r);
 }
 
-/* Without an output file the monitor observes every ceil(1024 / stages) steps and the last
- * (issue 25: under 1 % of the run, bench/monitor_cost.c), says so, and its maxima are those of
+/* Without an output file the monitor observes every ceil(1024 / stages) steps (at most 1/100 of
+ * the planned steps) and the last (issue 25: under 1 % of the run, bench/monitor_cost.c), says so, and its maxima are those of
  * the steps it saw: at most the every-step maxima of --every 1, and equal to them where the
  * largest error falls on an observed step. */
 Test(cli, run_monitor_stride) {
-  run_output r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 1000 --json");
+  run_output r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 10000 --json");
   cr_assert_eq(r.status, 0, "%s", r.err);
   cJSON *o = parse_json(r.out);
   cr_assert_eq(json_number(o, "every"), 1);
   cr_assert_eq(json_number(o, "monitor_every"), 61); /* ceil(1024 / 17) */
-  /* the initial state, steps 61, 122, ..., 976 and step 1000 */
-  cr_assert_eq(json_number(o, "monitor_observations"), 18);
+  /* the initial state, steps 61, 122, ..., 9943 and step 10000 */
+  cr_assert_eq(json_number(o, "monitor_observations"), 165);
   const double sampled = json_number(o, "max_rel_energy_error");
   cJSON_Delete(o);
   run_output_free(&r);
-  r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 1000 --every 1 --json");
+  r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 10000 --every 1 --json");
   cr_assert_eq(r.status, 0, "%s", r.err);
   o = parse_json(r.out);
   cr_assert_eq(json_number(o, "monitor_every"), 1);
-  cr_assert_eq(json_number(o, "monitor_observations"), 1001);
+  cr_assert_eq(json_number(o, "monitor_observations"), 10001);
   const double all = json_number(o, "max_rel_energy_error");
-  /* measured: 1.530e-11 of 1.567e-11 */
+  /* measured: 1.5664e-11 of 1.5698e-11 */
   cr_assert(sampled > 0.0 && sampled <= all && sampled > 0.9 * all, "%g vs %g", sampled, all);
   cJSON_Delete(o);
   run_output_free(&r);
-  r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 1000");
+  r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 10000");
   cr_assert_eq(r.status, 0, "%s", r.err);
-  cr_assert(strstr(r.out, "the maxima are over every 61 steps and the last (18 observed") != NULL,
+  cr_assert(strstr(r.out, "the maxima are over every 61 steps and the last (165 observed") != NULL,
             "%s", r.out);
   run_output_free(&r);
-  r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 1000 --every 1");
+  r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 10000 --every 1");
   cr_assert_eq(r.status, 0, "%s", r.err);
   cr_assert(strstr(r.out, "the maxima are over") == NULL, "%s", r.out);
+  run_output_free(&r);
+}
+
+/* A short run is observed at least about 100 times: 1000 steps of kahan-li-8, every 10. */
+Test(cli, run_monitor_short_run) {
+  run_output r = run_cli("run kepler --method kahan-li-8 --dt 0.05 --steps 1000 --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  cJSON *o = parse_json(r.out);
+  cr_assert_eq(json_number(o, "monitor_every"), 10);
+  cr_assert_eq(json_number(o, "monitor_observations"), 101);
+  cJSON_Delete(o);
+  run_output_free(&r);
+  r = run_cli("run kepler --method verlet --dt 0.01 --steps 50 --json");
+  cr_assert_eq(r.status, 0, "%s", r.err);
+  o = parse_json(r.out);
+  cr_assert_eq(json_number(o, "monitor_every"), 1);
+  cJSON_Delete(o);
   run_output_free(&r);
 }
 
