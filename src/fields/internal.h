@@ -196,6 +196,11 @@ const int *yee_view_periodic(const gm_yee *s);
 /* Would the whole-grid solver let the anisotropic coupling take over E component c at global
  * index g (in its update range, outside CPML layers)? Always 1 without a view. */
 int yee_view_eligible(const gm_yee *s, int c, const long g[3]);
+/* Cells next to a location along axis a: both neighbours (index-1, index) on a node axis, the
+ * one cell on a staggered axis; out-of-range cells dropped or wrapped (periodic). Count in
+ * out[0..1] (yee_create.c; the dispersive edges use it too). */
+size_t yee_cells_along(const gm_yee_layout *L, const int periodic[3], int a, long idx, int node,
+                       long out[2]);
 
 /* gm_yee_create, with per-location Hodge-star coefficients even when the materials are uniform
  * (cell_coefficients != 0; materials must then be non-NULL): an MPI subdomain whose cells

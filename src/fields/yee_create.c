@@ -51,8 +51,8 @@ gm_status gm_yee_courant_limit(const gm_yee_grid *grid, const gm_yee_materials *
 
 /* Cells next to a location along one axis: both neighbours (index−1, index) on a node axis,
  * the one cell on a staggered axis; out-of-range cells dropped or wrapped (periodic). */
-static size_t cells_along(const gm_yee_layout *L, const int periodic[3], int a, long idx,
-                          int node, long out[2]) {
+size_t yee_cells_along(const gm_yee_layout *L, const int periodic[3], int a, long idx, int node,
+                       long out[2]) {
   const long n = (long)L->n[a];
   if (L->extent[a] == 1) {
     out[0] = 0;
@@ -75,9 +75,9 @@ static size_t cells_along(const gm_yee_layout *L, const int periodic[3], int a, 
 static double cell_mean(const gm_yee_layout *L, const int periodic[3], const long ijk[3],
                         const int node[3], const double *cell, int inverse) {
   long cx[2], cy[2], cz[2];
-  const size_t nx = cells_along(L, periodic, 0, ijk[0], node[0], cx);
-  const size_t ny = cells_along(L, periodic, 1, ijk[1], node[1], cy);
-  const size_t nz = cells_along(L, periodic, 2, ijk[2], node[2], cz);
+  const size_t nx = yee_cells_along(L, periodic, 0, ijk[0], node[0], cx);
+  const size_t ny = yee_cells_along(L, periodic, 1, ijk[1], node[1], cy);
+  const size_t nz = yee_cells_along(L, periodic, 2, ijk[2], node[2], cz);
   double sum = 0.0;
   for (size_t c = 0; c < nz; ++c)
     for (size_t b = 0; b < ny; ++b)

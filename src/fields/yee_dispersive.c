@@ -136,34 +136,12 @@ void yee_dispersive_free(gm_yee *s) {
   s->disp = NULL;
 }
 
-/* Cells around a location along axis b (as the staircase averages, yee_create.c). */
-static size_t cells_along(const gm_yee_layout *L, const int periodic[3], int b, long idx,
-                          int node, long out[2]) {
-  const long n = (long)L->n[b];
-  if (L->extent[b] == 1) {
-    out[0] = 0;
-    return 1;
-  }
-  if (!node) {
-    out[0] = idx;
-    return 1;
-  }
-  size_t m = 0;
-  for (long c = idx - 1; c <= idx; ++c) {
-    long w = c;
-    if (periodic[b]) w = ((c % n) + n) % n;
-    if (w >= 0 && w < n) out[m++] = w;
-  }
-  if (periodic[b] && m == 2 && out[0] == out[1]) m = 1;
-  return m;
-}
-
 /* Fraction of the cells around edge (c, ijk) in each pole set: count[1..n_sets] over total. */
 static size_t edge_sets(const gm_yee *s, const gm_yee_materials *m, int c, const long ijk[3],
                         size_t *count) {
   long cx[3][2];
   size_t nx[3];
-  for (int b = 0; b < 3; ++b) nx[b] = cells_along(&s->L, s->periodic, b, ijk[b], b != c, cx[b]);
+  for (int b = 0; b < 3; ++b) nx[b] = yee_cells_along(&s->L, s->periodic, b, ijk[b], b != c, cx[b]);
   memset(count, 0, (m->n_sets + 1) * sizeof *count);
   for (size_t z = 0; z < nx[2]; ++z)
     for (size_t y = 0; y < nx[1]; ++y)
